@@ -1,0 +1,41 @@
+#pragma once
+// Shared helpers for the test suites: where the real data is, scratch folders, file writing.
+#include <filesystem>
+#include <cstdlib>
+#include <string>
+
+namespace navaid::testing {
+
+/// ../shared/data beside the clone. When it is absent, tests that need it are skipped on a
+/// developer machine and fail in CI (CI=true), where the data must be present.
+std::filesystem::path shared_data_dir();
+/// True when shared_data_dir() exists; otherwise records a skip (or failure in CI).
+bool have_shared_data();
+
+/// A fresh, empty folder under the build's temp area, removed when the object dies.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& name);
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& child) const { return path_ / child; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+void write_text(const std::filesystem::path& file, const std::string& content);
+std::string read_text(const std::filesystem::path& file);
+
+}  // namespace navaid::testing
+
+/// Use at the top of a test that reads ../shared/data.
+#define NAVAID_REQUIRE_SHARED_DATA()                                              \
+  do {                                                                            \
+    if (!::navaid::testing::have_shared_data()) {                                 \
+      if (std::getenv("CI")) FAIL() << "../shared/data is missing in CI";         \
+      GTEST_SKIP() << "../shared/data not present beside the clone";              \
+    }                                                                             \
+  } while (0)
