@@ -19,16 +19,27 @@ struct SE3 {
   Vec3 t = Vec3::Zero();
 
   SE3() = default;
-  SE3(const Quat& rotation, const Vec3& translation);  // normalizes the quaternion
-  SE3(const Mat3& rotation, const Vec3& translation);
+  SE3(const Quat& rotation, const Vec3& translation) : q(rotation.normalized()), t(translation) {}
+  SE3(const Mat3& rotation, const Vec3& translation) : q(Quat(rotation).normalized()), t(translation) {}
 
   static SE3 identity() { return SE3(); }
   Mat3 rotation() const { return q.toRotationMatrix(); }
-  Eigen::Matrix4d matrix() const;
-  SE3 inverse() const;
-  SE3 operator*(const SE3& other) const;
+  Eigen::Matrix4d matrix() const {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topLeftCorner<3, 3>() = rotation();
+    m.topRightCorner<3, 1>() = t;
+    return m;
+  }
+  SE3 inverse() const {
+    const Quat qi = q.conjugate();
+    return SE3(qi, -(qi * t));
+  }
+  SE3 operator*(const SE3& other) const { return SE3(q * other.q, q * other.t + t); }
   Vec3 operator*(const Vec3& p) const { return q * p + t; }
-  bool is_approx(const SE3& other, double tol = 1e-9) const;
+  /// Same transform within tol (rotation angle [rad] and translation [m]); q and -q are equal.
+  bool is_approx(const SE3& other, double tol = 1e-9) const {
+    return (t - other.t).norm() <= tol && q.angularDistance(other.q) <= tol;
+  }
 };
 
 // SO(3)
