@@ -28,6 +28,7 @@ struct RgbdFrame {
   std::string intensity_path;     ///< intensity / colour image file (may be empty)
   std::string depth_path;         ///< 16-bit PNG depth file (may be empty)
   std::string labels_path;        ///< 8-bit semantic label PNG (may be empty)
+  double depth_png_scale_m = 0.001;  ///< metres per 16-bit depth PNG unit (navaid: mm; TUM: 1/5000)
   ImageU8 intensity;              ///< grey levels (1 channel) or RGB (3 channels)
   ImageF32 depth;                 ///< metric depth along the optical axis [m]; 0 = invalid
   std::optional<ImageU8> labels;  ///< semantic class id per pixel

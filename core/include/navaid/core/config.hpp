@@ -1,0 +1,73 @@
+#pragma once
+// YAML configuration with validation and command-line overrides.
+//
+// Every accessor validates: a missing key, a value of the wrong type or one outside its allowed
+// range raises ConfigError naming the file (or the --set override it came from), the dotted key
+// and the allowed range. Overrides "a.b.c=value" replace or create keys; the value is parsed as
+// YAML, so "--set imu.rate=400", "--set name=head" and "--set list=[1,2,3]" all work.
+// After reading, reject_unknown_keys() catches typos: keys nobody asked for are an error.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace navaid {
+
+/// Closed interval [min, max] for numeric keys.
+struct Range {
+  double min;
+  double max;
+};
+
+class Config {
+ public:
+  /// Empty configuration (every get_* with a default returns the default).
+  Config();
+  ~Config();
+  Config(const Config&);
+  Config& operator=(const Config&);
+  Config(Config&&) noexcept;
+  Config& operator=(Config&&) noexcept;
+
+  /// Loads a YAML file; throws ConfigError (key "<file>") when it is missing or not valid YAML.
+  static Config load(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+  /// Parses YAML text; `name` stands for the file in messages.
+  static Config parse(const std::string& yaml, const std::string& name = "<config>",
+                      const std::vector<std::string>& overrides = {});
+
+  /// Applies "a.b.c=value"; throws ConfigError on a malformed assignment or a path through a scalar.
+  void apply_override(const std::string& assignment);
+
+  bool has(std::string_view key) const;
+  /// The file name (or "--set key=value") that the key's value came from.
+  std::string origin(std::string_view key) const;
+
+  double get_double(std::string_view key, Range allowed) const;
+  double get_double(std::string_view key, double fallback, Range allowed) const;
+  long long get_int(std::string_view key, long long min, long long max) const;
+  long long get_int(std::string_view key, long long fallback, long long min, long long max) const;
+  bool get_bool(std::string_view key) const;
+  bool get_bool(std::string_view key, bool fallback) const;
+  /// `allowed` empty means any string.
+  std::string get_string(std::string_view key, const std::vector<std::string>& allowed = {}) const;
+  std::string get_string(std::string_view key, const std::string& fallback,
+                         const std::vector<std::string>& allowed) const;
+  /// A sequence of numbers, each in `allowed`; `size` 0 means any length.
+  std::vector<double> get_doubles(std::string_view key, std::size_t size, Range allowed) const;
+  /// Child keys of a map (empty when the key is absent).
+  std::vector<std::string> child_keys(std::string_view key) const;
+
+  /// Throws ConfigError naming the first leaf key that no get_* call has read.
+  void reject_unknown_keys() const;
+
+  /// The whole configuration as YAML (after overrides), for run folders.
+  std::string dump() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace navaid

@@ -1,0 +1,269 @@
+#include "navaid/core/config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "navaid/core/errors.hpp"
+
+namespace navaid {
+
+struct Config::Impl {
+  YAML::Node root = YAML::Node(YAML::NodeType::Map);
+  std::string file = "<config>";
+  std::map<std::string, std::string> override_origin;  // key -> "--set key=value"
+  mutable std::set<std::string> read_keys;
+};
+
+namespace {
+
+std::vector<std::string> split_key(std::string_view key) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (start <= key.size()) {
+    const std::size_t dot = key.find('.', start);
+    const std::size_t end = dot == std::string_view::npos ? key.size() : dot;
+    parts.emplace_back(key.substr(start, end - start));
+    if (dot == std::string_view::npos) break;
+    start = dot + 1;
+  }
+  return parts;
+}
+
+// yaml-cpp's operator[] on a non-const node inserts; walking through clones keeps reads pure.
+std::optional<YAML::Node> find(const YAML::Node& root, std::string_view key) {
+  YAML::Node node = YAML::Clone(root);
+  for (const auto& part : split_key(key)) {
+    if (!node.IsMap()) return std::nullopt;
+    const YAML::Node child = node[part];
+    if (!child.IsDefined() || child.IsNull()) return std::nullopt;
+    node = child;
+  }
+  return node;
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string range_text(Range r) { return "[" + format_number(r.min) + ", " + format_number(r.max) + "]"; }
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
+  return out;
+}
+
+void collect_leaves(const YAML::Node& node, const std::string& prefix, std::vector<std::string>& out) {
+  if (node.IsMap()) {
+    for (const auto& kv : node) {
+      const std::string key = prefix.empty() ? kv.first.as<std::string>() : prefix + "." + kv.first.as<std::string>();
+      collect_leaves(kv.second, key, out);
+    }
+  } else if (!prefix.empty()) {
+    out.push_back(prefix);
+  }
+}
+
+}  // namespace
+
+Config::Config() : impl_(std::make_unique<Impl>()) {}
+Config::~Config() = default;
+Config::Config(const Config& o) : impl_(std::make_unique<Impl>(*o.impl_)) { impl_->root = YAML::Clone(o.impl_->root); }
+Config& Config::operator=(const Config& o) {
+  if (this != &o) *this = Config(o);
+  return *this;
+}
+Config::Config(Config&&) noexcept = default;
+Config& Config::operator=(Config&&) noexcept = default;
+
+Config Config::parse(const std::string& yaml, const std::string& name, const std::vector<std::string>& overrides) {
+  Config c;
+  c.impl_->file = name;
+  try {
+    YAML::Node root = YAML::Load(yaml);
+    if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+    if (!root.IsMap()) throw ConfigError(name, "<root>", "the top level must be a map of keys");
+    c.impl_->root = root;
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(name, "<file>", "not valid YAML (line " + std::to_string(e.mark.line + 1) + "): " + e.msg);
+  }
+  for (const auto& o : overrides) c.apply_override(o);
+  return c;
+}
+
+Config Config::load(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(file.string(), "<file>", "cannot open the configuration file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse(buffer.str(), file.string(), overrides);
+}
+
+void Config::apply_override(const std::string& assignment) {
+  const std::string origin = "--set " + assignment;
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError(origin, assignment, "an override must look like key.sub.key=value");
+  const std::string key = assignment.substr(0, eq);
+  const std::string value = assignment.substr(eq + 1);
+  const auto parts = split_key(key);
+  for (const auto& p : parts)
+    if (p.empty()) throw ConfigError(origin, key, "empty path component in the key");
+  YAML::Node parsed;
+  try {
+    parsed = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(origin, key, "value is not valid YAML: " + e.msg);
+  }
+  // Walk down, creating maps; a scalar in the way is an error, not silently replaced.
+  std::vector<YAML::Node> chain{impl_->root};
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node child = chain.back()[parts[i]];
+    if (child.IsDefined() && !child.IsNull() && !child.IsMap())
+      throw ConfigError(origin, key, "'" + parts[i] + "' holds a value, not a map of keys");
+    if (!child.IsDefined() || child.IsNull()) {
+      chain.back()[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      child = chain.back()[parts[i]];
+    }
+    chain.push_back(child);
+  }
+  chain.back()[parts.back()] = parsed;
+  impl_->override_origin[key] = origin;
+}
+
+bool Config::has(std::string_view key) const { return find(impl_->root, key).has_value(); }
+
+std::string Config::origin(std::string_view key) const {
+  // An override of a parent map also covers its children.
+  std::string k(key.substr(0, key.find('[')));  // list elements come from their list's origin
+  while (true) {
+    const auto it = impl_->override_origin.find(k);
+    if (it != impl_->override_origin.end()) return it->second;
+    const std::size_t dot = k.rfind('.');
+    if (dot == std::string::npos) return impl_->file;
+    k.resize(dot);
+  }
+}
+
+namespace {
+
+template <typename T>
+T scalar_as(const Config& c, const YAML::Node& node, std::string_view key, const char* type_name) {
+  if (!node.IsScalar()) throw ConfigError(c.origin(key), std::string(key), std::string("expected ") + type_name + ", found a " + (node.IsMap() ? "map" : "list"));
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(c.origin(key), std::string(key), "'" + node.Scalar() + "' is not " + type_name);
+  }
+}
+
+double checked_double(const Config& c, const YAML::Node& node, std::string_view key, Range allowed) {
+  const double v = scalar_as<double>(c, node, key, "a number");
+  if (!std::isfinite(v))
+    throw ConfigError(c.origin(key), std::string(key), "'" + node.Scalar() + "' is not a finite number; allowed range " + range_text(allowed));
+  if (v < allowed.min || v > allowed.max)
+    throw ConfigError(c.origin(key), std::string(key), "value " + node.Scalar() + " is outside the allowed range " + range_text(allowed));
+  return v;
+}
+
+}  // namespace
+
+double Config::get_double(std::string_view key, Range allowed) const {
+  impl_->read_keys.insert(std::string(key));
+  const auto node = find(impl_->root, key);
+  if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected a number in " + range_text(allowed));
+  return checked_double(*this, *node, key, allowed);
+}
+
+double Config::get_double(std::string_view key, double fallback, Range allowed) const {
+  return has(key) ? get_double(key, allowed) : (impl_->read_keys.insert(std::string(key)), fallback);
+}
+
+long long Config::get_int(std::string_view key, long long min, long long max) const {
+  impl_->read_keys.insert(std::string(key));
+  const auto node = find(impl_->root, key);
+  const std::string allowed = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected an integer in " + allowed);
+  const auto v = scalar_as<long long>(*this, *node, key, "an integer");
+  if (v < min || v > max)
+    throw ConfigError(origin(key), std::string(key), "value " + node->Scalar() + " is outside the allowed range " + allowed);
+  return v;
+}
+
+long long Config::get_int(std::string_view key, long long fallback, long long min, long long max) const {
+  return has(key) ? get_int(key, min, max) : (impl_->read_keys.insert(std::string(key)), fallback);
+}
+
+bool Config::get_bool(std::string_view key) const {
+  impl_->read_keys.insert(std::string(key));
+  const auto node = find(impl_->root, key);
+  if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected true or false");
+  return scalar_as<bool>(*this, *node, key, "true or false");
+}
+
+bool Config::get_bool(std::string_view key, bool fallback) const {
+  return has(key) ? get_bool(key) : (impl_->read_keys.insert(std::string(key)), fallback);
+}
+
+std::string Config::get_string(std::string_view key, const std::vector<std::string>& allowed) const {
+  impl_->read_keys.insert(std::string(key));
+  const auto node = find(impl_->root, key);
+  const std::string allowed_text = allowed.empty() ? "a string" : "one of: " + join(allowed);
+  if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected " + allowed_text);
+  const auto v = scalar_as<std::string>(*this, *node, key, "a string");
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+    throw ConfigError(origin(key), std::string(key), "'" + v + "' is not allowed; expected " + allowed_text);
+  return v;
+}
+
+std::string Config::get_string(std::string_view key, const std::string& fallback,
+                               const std::vector<std::string>& allowed) const {
+  return has(key) ? get_string(key, allowed) : (impl_->read_keys.insert(std::string(key)), fallback);
+}
+
+std::vector<double> Config::get_doubles(std::string_view key, std::size_t size, Range allowed) const {
+  impl_->read_keys.insert(std::string(key));
+  const auto node = find(impl_->root, key);
+  const std::string what = (size ? std::to_string(size) + " numbers" : std::string("a list of numbers")) + " in " + range_text(allowed);
+  if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected " + what);
+  if (!node->IsSequence()) throw ConfigError(origin(key), std::string(key), "expected " + what + ", found a single value or map");
+  if (size && node->size() != size)
+    throw ConfigError(origin(key), std::string(key), "expected " + what + ", found " + std::to_string(node->size()) + " values");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < node->size(); ++i)
+    out.push_back(checked_double(*this, (*node)[i], std::string(key) + "[" + std::to_string(i) + "]", allowed));
+  return out;
+}
+
+std::vector<std::string> Config::child_keys(std::string_view key) const {
+  std::vector<std::string> out;
+  const auto node = key.empty() ? std::optional<YAML::Node>(impl_->root) : find(impl_->root, key);
+  if (node && node->IsMap())
+    for (const auto& kv : *node) out.push_back(kv.first.as<std::string>());
+  return out;
+}
+
+void Config::reject_unknown_keys() const {
+  std::vector<std::string> leaves;
+  collect_leaves(impl_->root, "", leaves);
+  for (const auto& leaf : leaves) {
+    if (!impl_->read_keys.count(leaf))
+      throw ConfigError(origin(leaf), leaf, "unknown key (misspelt, or not used by this command)");
+  }
+}
+
+std::string Config::dump() const {
+  YAML::Emitter out;
+  out << impl_->root;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace navaid

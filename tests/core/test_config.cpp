@@ -1,0 +1,121 @@
+#include <gtest/gtest.h>
+
+#include "navaid/core/config.hpp"
+#include "navaid/core/errors.hpp"
+#include "test_support.hpp"
+
+using navaid::Config;
+using navaid::ConfigError;
+using navaid::Range;
+
+namespace {
+
+const char* kYaml = R"(
+sensor:
+  imu:
+    rate: 200
+    noise: [0.1, 0.2, 0.3]
+  camera:
+    model: pinhole
+    enabled: true
+window: 10
+)";
+
+// Runs `f`, expects a ConfigError and returns its message.
+template <typename F>
+std::string config_error(F f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no ConfigError thrown";
+  return {};
+}
+
+}  // namespace
+
+TEST(Config, ReadsTypedValues) {
+  const Config c = Config::parse(kYaml, "walk.yaml");
+  EXPECT_DOUBLE_EQ(c.get_double("sensor.imu.rate", {1, 1000}), 200.0);
+  EXPECT_EQ(c.get_int("window", 2, 50), 10);
+  EXPECT_TRUE(c.get_bool("sensor.camera.enabled"));
+  EXPECT_EQ(c.get_string("sensor.camera.model", {"pinhole", "fisheye"}), "pinhole");
+  EXPECT_EQ(c.get_doubles("sensor.imu.noise", 3, {0, 1}), (std::vector<double>{0.1, 0.2, 0.3}));
+  EXPECT_DOUBLE_EQ(c.get_double("sensor.gps.rate", 5.0, {1, 10}), 5.0);
+  EXPECT_EQ(c.child_keys("sensor"), (std::vector<std::string>{"imu", "camera"}));
+}
+
+TEST(Config, OutOfRangeNamesFileKeyAndRange) {
+  const Config c = Config::parse(kYaml, "walk.yaml");
+  const auto msg = config_error([&] { c.get_double("sensor.imu.rate", {1, 100}); });
+  EXPECT_NE(msg.find("walk.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("sensor.imu.rate"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("[1, 100]"), std::string::npos) << msg;
+}
+
+TEST(Config, MissingKeyWrongTypeAndDisallowedString) {
+  const Config c = Config::parse(kYaml, "walk.yaml");
+  EXPECT_NE(config_error([&] { c.get_double("sensor.imu.bias", {0, 1}); }).find("missing"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.get_int("sensor.camera.model", 0, 5); }).find("not an integer"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.get_string("sensor.camera.model", {"fisheye"}); }).find("one of: fisheye"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { c.get_doubles("sensor.imu.noise", 4, {0, 1}); }).find("found 3 values"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { c.get_double("sensor.imu", {0, 1}); }).find("found a map"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.get_bool("window"); }).find("true or false"), std::string::npos);
+}
+
+TEST(Config, NonFiniteNumbersRejected) {
+  const Config c = Config::parse("a: .nan\nb: .inf\n", "x.yaml");
+  EXPECT_NE(config_error([&] { c.get_double("a", {-1e9, 1e9}); }).find("not a finite number"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.get_double("b", {-1e9, 1e9}); }).find("not a finite number"), std::string::npos);
+}
+
+TEST(Config, OverridesReplaceAndCreateKeysAndAreNamedInErrors) {
+  const Config c = Config::parse(kYaml, "walk.yaml",
+                                 {"sensor.imu.rate=400", "sensor.gps.rate=5", "sensor.imu.noise=[1,2,3]"});
+  EXPECT_DOUBLE_EQ(c.get_double("sensor.imu.rate", {1, 1000}), 400.0);
+  EXPECT_DOUBLE_EQ(c.get_double("sensor.gps.rate", {1, 10}), 5.0);
+  const auto msg = config_error([&] { c.get_doubles("sensor.imu.noise", 3, {0, 1}); });
+  EXPECT_NE(msg.find("--set sensor.imu.noise=[1,2,3]"), std::string::npos) << msg;
+  EXPECT_EQ(c.origin("sensor.camera.model"), "walk.yaml");
+}
+
+TEST(Config, MalformedOverrides) {
+  Config c = Config::parse(kYaml, "walk.yaml");
+  EXPECT_NE(config_error([&] { c.apply_override("sensor.imu.rate"); }).find("key.sub.key=value"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.apply_override("=3"); }).find("key.sub.key=value"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.apply_override("sensor..rate=3"); }).find("empty path"), std::string::npos);
+  EXPECT_NE(config_error([&] { c.apply_override("window.size=3"); }).find("holds a value"), std::string::npos);
+}
+
+TEST(Config, UnknownKeysAreRejectedAfterReading) {
+  const Config c = Config::parse(kYaml, "walk.yaml", {"sensor.imu.rtae=3"});
+  c.get_double("sensor.imu.rate", {1, 1000});
+  c.get_doubles("sensor.imu.noise", 3, {0, 1});
+  c.get_string("sensor.camera.model");
+  c.get_bool("sensor.camera.enabled");
+  c.get_int("window", 1, 20);
+  const auto msg = config_error([&] { c.reject_unknown_keys(); });
+  EXPECT_NE(msg.find("sensor.imu.rtae"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--set"), std::string::npos) << msg;
+}
+
+TEST(Config, FileErrors) {
+  EXPECT_NE(config_error([] { Config::load("/nonexistent/navaid.yaml"); }).find("cannot open"), std::string::npos);
+  navaid::testing::ScratchDir dir("config");
+  navaid::testing::write_text(dir / "bad.yaml", "a: [1, 2\nb: 3\n");
+  const auto msg = config_error([&] { Config::load(dir / "bad.yaml"); });
+  EXPECT_NE(msg.find("bad.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not valid YAML"), std::string::npos) << msg;
+  navaid::testing::write_text(dir / "list.yaml", "- 1\n- 2\n");
+  EXPECT_NE(config_error([&] { Config::load(dir / "list.yaml"); }).find("map of keys"), std::string::npos);
+}
+
+TEST(Config, DumpRoundTripsThroughParse) {
+  const Config c = Config::parse(kYaml, "walk.yaml", {"sensor.imu.rate=400"});
+  const Config d = Config::parse(c.dump(), "dump.yaml");
+  EXPECT_DOUBLE_EQ(d.get_double("sensor.imu.rate", {1, 1000}), 400.0);
+  EXPECT_EQ(d.dump(), c.dump());
+}
