@@ -1,9 +1,37 @@
 // The navaid command-line program.
+#include <spdlog/spdlog.h>
+
 #include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "commands.hpp"
+#include "navaid/core/errors.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"navaid: navigation aids for blind and low-vision people"};
+  CLI::App app{"navaid: navigation aids for blind and low-vision people.\n"
+               "Reads recordings (navaid, EuRoC/ASL, TUM RGB-D, NMEA captures, TUM trajectories)."};
+  app.set_help_all_flag("--help-all", "Help for every command");
+  int verbosity = 0;
+  app.add_flag("-v,--verbose", verbosity, "More log output (repeat for debug)");
   app.require_subcommand(1);
-  CLI11_PARSE(app, argc, argv);
+  navaid::cli::add_info_command(app);
+  navaid::cli::add_convert_command(app);
+  navaid::cli::add_plot_command(app);
+  app.parse_complete_callback([&] {
+    spdlog::set_level(verbosity >= 2 ? spdlog::level::debug
+                      : verbosity == 1 ? spdlog::level::info
+                                       : spdlog::level::warn);
+  });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const navaid::Error& e) {
+    std::fprintf(stderr, "navaid: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "navaid: internal error: %s\n", e.what());
+    return 3;
+  }
   return 0;
 }

@@ -1,0 +1,11 @@
+#pragma once
+// Each navaid subcommand registers itself on the top-level CLI11 app.
+#include <CLI/CLI.hpp>
+
+namespace navaid::cli {
+
+void add_info_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
+void add_plot_command(CLI::App& app);
+
+}  // namespace navaid::cli
