@@ -63,7 +63,7 @@ std::vector<std::string_view> split_fields(std::string_view line, char separator
 }
 
 namespace {
-std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
+std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
 }  // namespace
 
 double parse_double(const TextFile& file, std::string_view text, std::string_view column) {
@@ -73,9 +73,9 @@ double parse_double(const TextFile& file, std::string_view text, std::string_vie
   errno = 0;
   const double value = std::strtod(buffer.c_str(), &end);
   if (end != buffer.c_str() + buffer.size())
-    file.fail("column '" + std::string(column) + "': " + quoted(buffer) + " is not a number");
+    file.fail("column '" + std::string(column) + "': " + in_quotes(buffer) + " is not a number");
   if (!std::isfinite(value) || errno == ERANGE)
-    file.fail("column '" + std::string(column) + "': " + quoted(buffer) + " is not a finite number");
+    file.fail("column '" + std::string(column) + "': " + in_quotes(buffer) + " is not a finite number");
   return value;
 }
 
@@ -85,19 +85,19 @@ long long parse_integer(const TextFile& file, std::string_view text, std::string
   errno = 0;
   const long long value = std::strtoll(buffer.c_str(), &end, 10);
   if (buffer.empty() || end != buffer.c_str() + buffer.size() || errno == ERANGE)
-    file.fail("column '" + std::string(column) + "': " + quoted(buffer) + " is not an integer");
+    file.fail("column '" + std::string(column) + "': " + in_quotes(buffer) + " is not an integer");
   return value;
 }
 
 Timestamp parse_seconds_field(const TextFile& file, std::string_view text, std::string_view column) {
   const auto t = parse_seconds(trim(text));
-  if (!t) file.fail("column '" + std::string(column) + "': " + quoted(trim(text)) + " is not a time in seconds");
+  if (!t) file.fail("column '" + std::string(column) + "': " + in_quotes(trim(text)) + " is not a time in seconds");
   return *t;
 }
 
 Timestamp parse_nanoseconds_field(const TextFile& file, std::string_view text, std::string_view column) {
   const auto t = parse_nanoseconds(trim(text));
-  if (!t) file.fail("column '" + std::string(column) + "': " + quoted(trim(text)) + " is not an integer time in nanoseconds");
+  if (!t) file.fail("column '" + std::string(column) + "': " + in_quotes(trim(text)) + " is not an integer time in nanoseconds");
   return *t;
 }
 
