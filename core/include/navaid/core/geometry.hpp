@@ -49,7 +49,8 @@ Quat so3_exp(const Vec3& phi);               ///< rotation vector to unit quater
 Vec3 so3_log(const Quat& q);                 ///< unit quaternion to rotation vector, |phi| <= pi
 Mat3 so3_right_jacobian(const Vec3& phi);    ///< Jr(phi): Exp(phi + d) ~ Exp(phi) Exp(Jr d)
 Mat3 so3_right_jacobian_inverse(const Vec3& phi);
-Mat3 so3_left_jacobian(const Vec3& phi);
+Mat3 so3_left_jacobian(const Vec3& phi);     ///< Jl(phi) = Jr(-phi): Exp(phi + d) ~ Exp(Jl d) Exp(phi)
+Mat3 so3_left_jacobian_inverse(const Vec3& phi);
 Quat so3_boxplus(const Quat& q, const Vec3& dtheta);  ///< q * Exp(dtheta), normalized
 Vec3 so3_boxminus(const Quat& a, const Quat& b);      ///< Log(b^-1 a)
 
