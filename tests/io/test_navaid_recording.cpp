@@ -623,7 +623,9 @@ TEST_F(NavaidRecordingTest, WriterRefusesUnrepresentableDepth) {
   const fs::path out = dir_ / "deep";
   expect_io_error([&] { write_navaid_recording(r, out); }, "cam0_0.png", 0, "exceeds the 16-bit range");
   r.frames[0].depth = ImageF32(4, 3, 1, std::nanf(""));
-  expect_io_error([&] { write_navaid_recording(r, dir_ / "nan-depth", {true, 3, false}); }, "cam0_0.png", 0,
+  NavaidWriteOptions overwrite;
+  overwrite.overwrite = true;
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "nan-depth", overwrite); }, "cam0_0.png", 0,
                   "only finite depth");
 }
 
