@@ -1,0 +1,66 @@
+// navaid convert: EuRoC, TUM RGB-D, NMEA captures, TUM trajectories or navaid recordings into a
+// navaid recording.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "commands.hpp"
+#include "input_option.hpp"
+#include "navaid/io/navaid_recording.hpp"
+#include "progress.hpp"
+
+namespace navaid::cli {
+namespace {
+
+// A capture has no origin of its own: the first located fix becomes the ENU origin, with its
+// ellipsoidal height (MSL altitude + geoid separation).
+void set_origin_from_first_fix(io::Recording& recording) {
+  if (recording.origin) return;
+  for (const auto& fix : recording.gps) {
+    if (fix.mode == GpsFixMode::kNoFix) continue;
+    const double h = std::isfinite(fix.altitude_m) ? fix.altitude_m + (std::isfinite(fix.geoid_separation_m) ? fix.geoid_separation_m : 0.0) : 0.0;
+    recording.origin = GeodeticOrigin{fix.latitude_deg, fix.longitude_deg, h};
+    return;
+  }
+}
+
+}  // namespace
+
+void add_convert_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("convert",
+                                 "Convert a recording (EuRoC, TUM RGB-D, NMEA capture, TUM trajectory, navaid) "
+                                 "into a navaid recording folder");
+  auto input = std::make_shared<InputOption>();
+  auto output = std::make_shared<std::filesystem::path>();
+  auto overwrite = std::make_shared<bool>(false);
+  input->add_to(*cmd);
+  cmd->add_option("output", *output, "Folder to write the navaid recording into")->required();
+  cmd->add_flag("--overwrite", *overwrite, "Replace the recording files in an existing output folder");
+  cmd->callback([input, output, overwrite] {
+    const auto kind = input->kind();
+    if (kind == io::InputKind::kCollection)
+      throw UsageError(input->path.string() + " is a folder of several captures or trajectories; convert one file at a time");
+    io::Recording recording = io::read_input(input->path, kind);
+    if (recording.empty()) throw IoError(input->path.string(), "holds no samples to convert");
+    set_origin_from_first_fix(recording);
+    std::error_code ec;
+    if (std::filesystem::exists(*output, ec) && !std::filesystem::is_empty(*output, ec) && !*overwrite)
+      throw UsageError(output->string() + " exists and is not empty; pass --overwrite to replace its recording files");
+    io::NavaidWriteOptions options;
+    options.overwrite = *overwrite;
+    Progress progress("writing frames", recording.frames.size());
+    options.on_frame_written = [&progress](std::size_t done, std::size_t) { progress.update(done); };
+    io::write_navaid_recording(recording, *output, options);
+    progress.finish();
+    spdlog::info("read {} ({}), wrote {}", input->path.string(), recording.format, output->string());
+    std::cout << fmt::format("wrote {}: {} imu, {} frames, {} gps, {} mag, {} ground-truth samples; {} warnings\n",
+                             output->string(), recording.imu.size(), recording.frames.size(), recording.gps.size(),
+                             recording.mag.size(), recording.groundtruth.size(), recording.report.total());
+    for (const auto& w : recording.report.warnings)
+      std::cout << fmt::format("  {}: {}{}\n", w.source, w.message, w.count > 1 ? fmt::format(" (x{})", w.count) : "");
+  });
+}
+
+}  // namespace navaid::cli

@@ -1,0 +1,82 @@
+// navaid plot: top view and height of a recording's ground truth and GNSS track (in a local ENU
+// frame through GeographicLib), drawn by experiments/figures/plot_tracks.py.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+
+#include "commands.hpp"
+#include "input_option.hpp"
+#include "navaid/core/geodesy.hpp"
+#include "run_process.hpp"
+
+namespace navaid::cli {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kPython = "/usr/bin/python3";  // Debian's, which has matplotlib (DESIGN.md §5)
+
+void write_series(const fs::path& file, const std::vector<std::pair<Timestamp, Vec3>>& points) {
+  std::ofstream out(file);
+  if (!out) throw IoError(file.string(), "cannot write plot data");
+  out << "t,x,y,z\n";
+  for (const auto& [t, p] : points) out << fmt::format("{:.9f},{:.6f},{:.6f},{:.6f}\n", ns_to_seconds(t), p.x(), p.y(), p.z());
+}
+
+// ENU positions of the located fixes, relative to the recording's origin or the first fix.
+std::vector<std::pair<Timestamp, Vec3>> gps_enu(const io::Recording& recording) {
+  std::vector<std::pair<Timestamp, Vec3>> points;
+  std::optional<LocalEnuFrame> frame;
+  if (recording.origin) frame.emplace(*recording.origin);
+  for (const auto& fix : recording.gps) {
+    if (fix.mode == GpsFixMode::kNoFix) continue;
+    const double h = std::isfinite(fix.altitude_m) ? fix.altitude_m + (std::isfinite(fix.geoid_separation_m) ? fix.geoid_separation_m : 0.0) : 0.0;
+    if (!frame) frame.emplace(GeodeticOrigin{fix.latitude_deg, fix.longitude_deg, h});
+    points.emplace_back(fix.t, frame->to_enu(fix.latitude_deg, fix.longitude_deg, h));
+  }
+  return points;
+}
+
+}  // namespace
+
+void add_plot_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("plot", "Plot a recording's ground truth and GNSS track (top view and height)");
+  auto input = std::make_shared<InputOption>();
+  auto output = std::make_shared<fs::path>();
+  input->add_to(*cmd);
+  cmd->add_option("--out", *output, "Figure file (.png, .pdf or .svg)")->required();
+  cmd->callback([input, output] {
+    const auto kind = input->kind();
+    if (kind == io::InputKind::kCollection)
+      throw UsageError(input->path.string() + " is a folder of several captures or trajectories; plot one file at a time");
+    const io::Recording recording = io::read_input(input->path, kind);
+    const fs::path data_dir = fs::path(output->string() + ".data");
+    fs::create_directories(data_dir);
+    std::vector<std::string> argv{kPython, figures_dir() + "/plot_tracks.py"};
+    if (!recording.groundtruth.empty()) {
+      std::vector<std::pair<Timestamp, Vec3>> points;
+      for (const auto& s : recording.groundtruth) points.emplace_back(s.t, s.T_W_B.t);
+      write_series(data_dir / "groundtruth.csv", points);
+      argv.push_back("ground truth=" + (data_dir / "groundtruth.csv").string());
+    }
+    const auto gps = gps_enu(recording);
+    if (!gps.empty()) {
+      write_series(data_dir / "gnss_enu.csv", gps);
+      argv.push_back("GNSS fixes (ENU)=" + (data_dir / "gnss_enu.csv").string());
+    }
+    if (argv.size() == 2)
+      throw IoError(input->path.string(), "has neither ground truth nor located GNSS fixes to plot");
+    const bool enu_only = recording.groundtruth.empty();
+    argv.insert(argv.end(), {"--out", output->string(), "--title",
+                             fmt::format("{} ({})", input->path.filename().string(), recording.format)});
+    if (enu_only) argv.insert(argv.end(), {"--xlabel", "east [m]", "--ylabel", "north [m]", "--zlabel", "up [m]"});
+    spdlog::info("running {}", fmt::join(argv, " "));
+    const int rc = run_process(argv);
+    if (rc != 0) throw Error(fmt::format("the plotting script failed (exit status {}); command: {}", rc, fmt::join(argv, " ")));
+    std::cout << "wrote " << output->string() << " (data in " << data_dir.string() << ")\n";
+  });
+}
+
+}  // namespace navaid::cli

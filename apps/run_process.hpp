@@ -1,0 +1,15 @@
+#pragma once
+// Runs a program with arguments (no shell, so paths need no quoting) and waits for it.
+#include <string>
+#include <vector>
+
+namespace navaid::cli {
+
+/// Returns the exit status; throws navaid::Error when the program cannot be started.
+int run_process(const std::vector<std::string>& argv);
+
+/// The folder holding the plotting scripts: $NAVAID_FIGURES_DIR, else the source tree's
+/// experiments/figures, else the installed share/navaid/figures.
+std::string figures_dir();
+
+}  // namespace navaid::cli

@@ -1,0 +1,173 @@
+// End-to-end tests of the navaid program on the real data sets and on bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using navaid::testing::read_text;
+using navaid::testing::ScratchDir;
+using navaid::testing::shared_data_dir;
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+CliRun navaid_cli(const std::string& args, bool with_stderr = true) {
+  const std::string command = quote(NAVAID_CLI_PATH) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+// Every file of a folder, byte for byte, keyed by relative path.
+std::map<std::string, std::string> folder_contents(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_text(e.path());
+  return files;
+}
+
+}  // namespace
+
+TEST(Cli, HelpListsEveryCommand) {
+  const CliRun run = navaid_cli("--help");
+  EXPECT_EQ(run.status, 0);
+  for (const char* cmd : {"info", "convert", "plot"}) EXPECT_NE(run.output.find(cmd), std::string::npos) << cmd;
+  for (const char* cmd : {"info", "convert", "plot"}) EXPECT_EQ(navaid_cli(std::string(cmd) + " --help").status, 0) << cmd;
+  EXPECT_NE(navaid_cli("").status, 0);
+  EXPECT_NE(navaid_cli("frobnicate").status, 0);
+}
+
+TEST(Cli, InfoOnEveryCaptureOfTheGnssCollection) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const fs::path folder = shared_data_dir() / "gpsd-nmea";
+  const CliRun run = navaid_cli("info --json " + quote(folder.string()), false);
+  ASSERT_EQ(run.status, 0) << run.output.substr(0, 2000);
+  const auto all = nlohmann::json::parse(run.output);
+  std::size_t logs = 0;
+  for (const auto& e : fs::directory_iterator(folder)) logs += e.path().extension() == ".log";
+  ASSERT_EQ(all.size(), logs);  // every capture, and no .chk reference file
+  // A capture has a GNSS track exactly when GPSD's own decoding reports a timed position for it
+  // (fixes need a time; four captures never get one).
+  for (const auto& s : all) {
+    EXPECT_EQ(s["format"], "nmea") << s["path"];
+    const std::string chk = read_text(s["path"].get<std::string>() + ".chk");
+    bool gpsd_has_timed_position = false;
+    std::size_t start = 0;
+    while (!gpsd_has_timed_position && start < chk.size()) {
+      const std::size_t end = std::min(chk.find('\n', start), chk.size());
+      const std::string line = chk.substr(start, end - start);
+      gpsd_has_timed_position = line.find("\"class\":\"TPV\"") != std::string::npos &&
+                                line.find("\"time\"") != std::string::npos && line.find("\"lat\"") != std::string::npos;
+      start = end + 1;
+    }
+    EXPECT_EQ(s.contains("gps_track"), gpsd_has_timed_position) << s["path"];
+  }
+}
+
+TEST(Cli, InfoOnTrajectoryFolderAndFile) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const fs::path folder = shared_data_dir() / "rpg-euroc-V1_02" / "vislam_ba";
+  const CliRun table = navaid_cli("info " + quote(folder.string()));
+  ASSERT_EQ(table.status, 0) << table.output;
+  EXPECT_NE(table.output.find("stamped_groundtruth.txt"), std::string::npos);
+  EXPECT_NE(table.output.find("stamped_ba_estimate9.txt"), std::string::npos);
+  EXPECT_EQ(table.output.find("eval_cfg.yaml"), std::string::npos);
+
+  const CliRun run = navaid_cli("info --json " + quote((folder / "stamped_groundtruth.txt").string()), false);
+  ASSERT_EQ(run.status, 0);
+  const auto s = nlohmann::json::parse(run.output);
+  EXPECT_EQ(s["format"], "tum-trajectory");
+  ASSERT_TRUE(s.contains("groundtruth"));
+  // The EuRoC V1_02 ground truth: 200 Hz, first stamp as in the file.
+  EXPECT_EQ(s["streams"][0]["first_s"], "1403715524.907143116");
+  EXPECT_NEAR(s["streams"][0]["rate_hz"].get<double>(), 200.0, 0.5);
+  EXPECT_GT(s["groundtruth"]["length_m"].get<double>(), 10.0);
+}
+
+TEST(Cli, ConvertCaptureRoundTripsByteForByte) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  ScratchDir dir("cli-convert");
+  const fs::path capture = shared_data_dir() / "gpsd-nmea" / "haicom-305N.log";
+  const CliRun first = navaid_cli("convert " + quote(capture.string()) + " " + quote((dir / "a").string()));
+  ASSERT_EQ(first.status, 0) << first.output;
+  const std::string gps_csv = read_text(dir / "a" / "gps.csv");
+  const std::string header = gps_csv.substr(0, gps_csv.find('\n'));
+  EXPECT_NE(header.find("lat"), std::string::npos) << header;
+  EXPECT_NE(header.find("lon"), std::string::npos) << header;
+
+  ASSERT_EQ(navaid_cli("convert " + quote((dir / "a").string()) + " " + quote((dir / "b").string())).status, 0);
+  ASSERT_EQ(navaid_cli("convert " + quote((dir / "b").string()) + " " + quote((dir / "c").string())).status, 0);
+  EXPECT_EQ(folder_contents(dir / "b"), folder_contents(dir / "c"));
+  EXPECT_EQ(folder_contents(dir / "a"), folder_contents(dir / "b"));
+
+  // info on the converted recording agrees with info on the capture.
+  const auto from_capture = nlohmann::json::parse(navaid_cli("info --json " + quote(capture.string()), false).output);
+  const auto from_recording = nlohmann::json::parse(navaid_cli("info --json " + quote((dir / "c").string()), false).output);
+  EXPECT_EQ(from_capture["gps_track"], from_recording["gps_track"]);
+}
+
+TEST(Cli, ConvertRefusesToOverwriteAndCollections) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  ScratchDir dir("cli-refuse");
+  const fs::path capture = shared_data_dir() / "gpsd-nmea" / "haicom-305N.log";
+  ASSERT_EQ(navaid_cli("convert " + quote(capture.string()) + " " + quote((dir / "a").string())).status, 0);
+  const CliRun again = navaid_cli("convert " + quote(capture.string()) + " " + quote((dir / "a").string()));
+  EXPECT_EQ(again.status, 2);
+  EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
+  EXPECT_EQ(navaid_cli("convert --overwrite " + quote(capture.string()) + " " + quote((dir / "a").string())).status, 0);
+  const CliRun collection = navaid_cli("convert " + quote((shared_data_dir() / "gpsd-nmea").string()) + " " +
+                                    quote((dir / "x").string()));
+  EXPECT_EQ(collection.status, 2);
+  EXPECT_NE(collection.output.find("one file at a time"), std::string::npos) << collection.output;
+}
+
+TEST(Cli, BadInputGivesClearErrors) {
+  ScratchDir dir("cli-bad");
+  const CliRun missing = navaid_cli("info " + quote((dir / "nothing-here").string()));
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("nothing-here"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
+
+  navaid::testing::write_text(dir / "notes.txt", "hello\nworld\n");
+  const CliRun unknown = navaid_cli("info " + quote((dir / "notes.txt").string()));
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.output.find("not a recognised file"), std::string::npos) << unknown.output;
+
+  navaid::testing::write_text(dir / "traj.txt", "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0 1\n1.5 0 0 0 0 0 0 1\n");
+  const CliRun decreasing = navaid_cli("info " + quote((dir / "traj.txt").string()));
+  EXPECT_EQ(decreasing.status, 2);
+  EXPECT_NE(decreasing.output.find("traj.txt:3"), std::string::npos) << decreasing.output;
+
+  EXPECT_NE(navaid_cli("info --format bogus " + quote((dir / "traj.txt").string())).status, 0);
+}
+
+TEST(Cli, PlotWritesAFigure) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  ScratchDir dir("cli-plot");
+  const fs::path capture = shared_data_dir() / "gpsd-nmea" / "haicom-305N.log";
+  const CliRun run = navaid_cli("plot " + quote(capture.string()) + " --out " + quote((dir / "track.png").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  ASSERT_TRUE(fs::exists(dir / "track.png"));
+  EXPECT_GT(fs::file_size(dir / "track.png"), 10000u);
+  const std::string png = read_text(dir / "track.png");
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
