@@ -8,25 +8,11 @@
 
 #include "commands.hpp"
 #include "input_option.hpp"
+#include "navaid/core/geodesy.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "progress.hpp"
 
 namespace navaid::cli {
-namespace {
-
-// A capture has no origin of its own: the first located fix becomes the ENU origin, with its
-// ellipsoidal height (MSL altitude + geoid separation).
-void set_origin_from_first_fix(io::Recording& recording) {
-  if (recording.origin) return;
-  for (const auto& fix : recording.gps) {
-    if (fix.mode == GpsFixMode::kNoFix) continue;
-    const double h = std::isfinite(fix.altitude_m) ? fix.altitude_m + (std::isfinite(fix.geoid_separation_m) ? fix.geoid_separation_m : 0.0) : 0.0;
-    recording.origin = GeodeticOrigin{fix.latitude_deg, fix.longitude_deg, h};
-    return;
-  }
-}
-
-}  // namespace
 
 void add_convert_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("convert",
@@ -44,7 +30,8 @@ void add_convert_command(CLI::App& app) {
       throw UsageError(input->path.string() + " is a folder of several captures or trajectories; convert one file at a time");
     io::Recording recording = io::read_input(input->path, kind);
     if (recording.empty()) throw IoError(input->path.string(), "holds no samples to convert");
-    set_origin_from_first_fix(recording);
+    // A capture has no origin of its own: its first 3D fix becomes the ENU origin.
+    if (!recording.origin) recording.origin = origin_from_fixes(recording.gps);
     std::error_code ec;
     if (std::filesystem::exists(*output, ec) && !std::filesystem::is_empty(*output, ec) && !*overwrite)
       throw UsageError(output->string() + " exists and is not empty; pass --overwrite to replace its recording files");

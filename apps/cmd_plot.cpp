@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <iostream>
 
 #include "commands.hpp"
@@ -25,16 +26,19 @@ void write_series(const fs::path& file, const std::vector<std::pair<Timestamp, V
   for (const auto& [t, p] : points) out << fmt::format("{:.9f},{:.6f},{:.6f},{:.6f}\n", ns_to_seconds(t), p.x(), p.y(), p.z());
 }
 
-// ENU positions of the located fixes, relative to the recording's origin or the first fix.
+// ENU positions of the located fixes, relative to the recording's origin or one made from the
+// fixes; fixes without a measured height (2D) get NaN up, drawn as a break in the height plot.
 std::vector<std::pair<Timestamp, Vec3>> gps_enu(const io::Recording& recording) {
   std::vector<std::pair<Timestamp, Vec3>> points;
-  std::optional<LocalEnuFrame> frame;
-  if (recording.origin) frame.emplace(*recording.origin);
+  const auto origin = recording.origin ? recording.origin : origin_from_fixes(recording.gps);
+  if (!origin) return points;
+  const LocalEnuFrame frame(*origin);
   for (const auto& fix : recording.gps) {
     if (fix.mode == GpsFixMode::kNoFix) continue;
-    const double h = std::isfinite(fix.altitude_m) ? fix.altitude_m + (std::isfinite(fix.geoid_separation_m) ? fix.geoid_separation_m : 0.0) : 0.0;
-    if (!frame) frame.emplace(GeodeticOrigin{fix.latitude_deg, fix.longitude_deg, h});
-    points.emplace_back(fix.t, frame->to_enu(fix.latitude_deg, fix.longitude_deg, h));
+    const auto h = ellipsoidal_height_m(fix);
+    Vec3 enu = frame.to_enu(fix.latitude_deg, fix.longitude_deg, h.value_or(origin->height_m));
+    if (!h) enu.z() = std::numeric_limits<double>::quiet_NaN();
+    points.emplace_back(fix.t, enu);
   }
   return points;
 }

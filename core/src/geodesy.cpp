@@ -2,6 +2,7 @@
 
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
+#include <cmath>
 
 namespace navaid {
 
@@ -34,6 +35,19 @@ Vec3 LocalEnuFrame::to_geodetic(const Vec3& enu) const {
   Vec3 geo;
   impl_->cartesian.Reverse(enu.x(), enu.y(), enu.z(), geo.x(), geo.y(), geo.z());
   return geo;
+}
+
+std::optional<double> ellipsoidal_height_m(const GpsFix& fix) {
+  if (fix.mode != GpsFixMode::k3D || !std::isfinite(fix.altitude_m)) return std::nullopt;
+  return fix.altitude_m + (std::isfinite(fix.geoid_separation_m) ? fix.geoid_separation_m : 0.0);
+}
+
+std::optional<GeodeticOrigin> origin_from_fixes(const std::vector<GpsFix>& fixes) {
+  for (const auto& fix : fixes)
+    if (const auto h = ellipsoidal_height_m(fix)) return GeodeticOrigin{fix.latitude_deg, fix.longitude_deg, *h};
+  for (const auto& fix : fixes)
+    if (fix.mode != GpsFixMode::kNoFix) return GeodeticOrigin{fix.latitude_deg, fix.longitude_deg, 0.0};
+  return std::nullopt;
 }
 
 GeodesicLine geodesic_inverse(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg) {

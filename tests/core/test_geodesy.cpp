@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "navaid/core/geodesy.hpp"
 
 using namespace navaid;
@@ -27,4 +29,30 @@ TEST(Geodesy, KnownGeodesic) {
   const auto east = geodesic_inverse(0.0, 0.0, 0.0, 1.0);
   EXPECT_NEAR(east.distance_m, 111319.491, 0.01);
   EXPECT_NEAR(east.azimuth_deg, 90.0, 1e-9);
+}
+
+TEST(Geodesy, OriginFromFixesPrefersAMeasuredHeight) {
+  GpsFix no_fix;
+  no_fix.mode = GpsFixMode::kNoFix;
+  GpsFix fix2d;
+  fix2d.mode = GpsFixMode::k2D;
+  fix2d.latitude_deg = 10;
+  fix2d.longitude_deg = 20;
+  fix2d.altitude_m = std::numeric_limits<double>::quiet_NaN();
+  GpsFix fix3d = fix2d;
+  fix3d.mode = GpsFixMode::k3D;
+  fix3d.latitude_deg = 11;
+  fix3d.altitude_m = 100;
+  fix3d.geoid_separation_m = -20;
+  EXPECT_FALSE(ellipsoidal_height_m(fix2d).has_value());
+  EXPECT_DOUBLE_EQ(*ellipsoidal_height_m(fix3d), 80.0);
+  const auto origin = origin_from_fixes({no_fix, fix2d, fix3d});
+  ASSERT_TRUE(origin.has_value());
+  EXPECT_DOUBLE_EQ(origin->latitude_deg, 11.0);
+  EXPECT_DOUBLE_EQ(origin->height_m, 80.0);
+  const auto flat = origin_from_fixes({no_fix, fix2d});
+  ASSERT_TRUE(flat.has_value());
+  EXPECT_DOUBLE_EQ(flat->latitude_deg, 10.0);
+  EXPECT_DOUBLE_EQ(flat->height_m, 0.0);
+  EXPECT_FALSE(origin_from_fixes({no_fix}).has_value());
 }

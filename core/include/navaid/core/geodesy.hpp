@@ -2,9 +2,12 @@
 // Geodesy on the WGS84 ellipsoid through GeographicLib (never hand-written, DESIGN.md §4).
 // Geodetic angles are in degrees, as GeographicLib and every receiver use them.
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "navaid/core/calibration.hpp"
 #include "navaid/core/geometry.hpp"
+#include "navaid/core/messages.hpp"
 
 namespace navaid {
 
@@ -33,6 +36,15 @@ struct GeodesicLine {
   double distance_m = 0;   ///< along the ellipsoid
   double azimuth_deg = 0;  ///< at the first point, clockwise from north
 };
+
+/// Height above the ellipsoid (MSL altitude + geoid separation); nullopt without a measured
+/// altitude (no fix, 2D fix). A missing geoid separation counts as 0 (receivers that omit it
+/// usually report ellipsoidal height as altitude).
+std::optional<double> ellipsoidal_height_m(const GpsFix& fix);
+
+/// An ENU origin for fixes that come without one: the first 3D fix with a measured height, else
+/// the first located fix at height 0; nullopt when no fix has a position.
+std::optional<GeodeticOrigin> origin_from_fixes(const std::vector<GpsFix>& fixes);
 
 GeodesicLine geodesic_inverse(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
 
