@@ -85,6 +85,13 @@ TEST(Cli, InfoOnEveryCaptureOfTheGnssCollection) {
 
 TEST(Cli, InfoOnTrajectoryFolderAndFile) {
   NAVAID_REQUIRE_SHARED_DATA();
+  for (const char* sub : {"vislam_ba", "vislam_rp"}) {
+    const CliRun rows = navaid_cli("info --json " + quote((shared_data_dir() / "rpg-euroc-V1_02" / sub).string()), false);
+    ASSERT_EQ(rows.status, 0) << sub;
+    const auto members = nlohmann::json::parse(rows.output);
+    EXPECT_EQ(members.size(), 11u) << sub;  // ground truth + ten estimates, not eval_cfg.yaml
+    for (const auto& m : members) EXPECT_EQ(m["format"], "tum-trajectory");
+  }
   const fs::path folder = shared_data_dir() / "rpg-euroc-V1_02" / "vislam_ba";
   const CliRun table = navaid_cli("info " + quote(folder.string()));
   ASSERT_EQ(table.status, 0) << table.output;
