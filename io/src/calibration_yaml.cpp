@@ -29,15 +29,20 @@ YamlFile::YamlFile(const std::filesystem::path& file) : path(file.string()) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw IoError(path, "file does not exist");
   if (std::filesystem::is_directory(file, ec)) throw IoError(path, "is a directory, expected a YAML file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw IoError(path, "cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_file_text(file, path);
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw IoError(path, static_cast<std::size_t>(e.mark.line + 1), "YAML syntax error: " + e.msg);
   }
+}
+
+std::string read_file_text(const std::filesystem::path& file, const std::string& name) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw IoError(name, "cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 std::string join_key(const std::string& parent, const std::string& key) {

@@ -23,6 +23,9 @@ struct YamlFile {
   explicit YamlFile(const std::filesystem::path& file);
 };
 
+/// The whole content of `file`, read as bytes; IoError naming `name` when it cannot be opened.
+std::string read_file_text(const std::filesystem::path& file, const std::string& name);
+
 /// `parent.key`, or "key" when parent is empty.
 std::string join_key(const std::string& parent, const std::string& key);
 

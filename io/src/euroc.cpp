@@ -1,8 +1,6 @@
 #include "navaid/io/euroc.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <sstream>
 
 #include "calibration_yaml.hpp"
 #include "navaid/core/errors.hpp"
@@ -83,13 +81,7 @@ std::vector<GroundTruthState> read_groundtruth_csv(const fs::path& path) {
                  parse_double(file, f[3], "p_RS_R_z"));
     const Quat q(parse_double(file, f[4], "q_RS_w"), parse_double(file, f[5], "q_RS_x"),
                  parse_double(file, f[6], "q_RS_y"), parse_double(file, f[7], "q_RS_z"));
-    const double norm = q.norm();
-    if (!(std::abs(norm - 1.0) <= kTumQuaternionNormTolerance)) {
-      std::ostringstream message;
-      message.precision(9);
-      message << "quaternion (q_RS_w q_RS_x q_RS_y q_RS_z) has norm " << norm << ", not within 1e-3 of 1";
-      file.fail(message.str());
-    }
+    require_unit_quaternion(file, q, "q_RS_w q_RS_x q_RS_y q_RS_z");
     s.T_W_B = SE3(q, p);
     if (f.size() == 17) {
       s.v_W = Vec3(parse_double(file, f[8], "v_RS_R_x"), parse_double(file, f[9], "v_RS_R_y"),

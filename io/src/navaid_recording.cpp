@@ -12,9 +12,9 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
+#include "calibration_yaml.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/text_file.hpp"
@@ -62,6 +62,11 @@ constexpr double kUnitQuaternionRejectTolerance = 1e-3;
 // A hand-written rotation matrix must be orthonormal to this (max |R^T R - I|), det +1.
 constexpr double kRotationMatrixTolerance = 1e-6;
 
+// A quaternion read from a file: kept as it is when unit to double precision, else normalized.
+Quat unit_as_read(const Quat& q) {
+  return std::abs(q.squaredNorm() - 1.0) <= kUnitQuaternionKeepTolerance ? q : q.normalized();
+}
+
 // GpsFix::satellites when the receiver did not say (the NMEA reader's convention).
 constexpr int kUnknownSatellites = -1;
 
@@ -96,9 +101,7 @@ std::string yaml_number(double value) {
 // ----------------------------------------------------------------------------------------------
 // YAML reading: every failure is a ConfigError naming the file and the dotted key.
 
-std::string join_key(const std::string& parent, const std::string& key) {
-  return parent.empty() ? key : parent + "." + key;
-}
+using detail::join_key;
 
 struct YamlDoc {
   std::string file;
@@ -107,12 +110,9 @@ struct YamlDoc {
   explicit YamlDoc(const fs::path& path) : file(path.string()) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw IoError(file, "file does not exist");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(file, "cannot open for reading");
-    std::ostringstream text;
-    text << in.rdbuf();
+    const std::string text = detail::read_file_text(path, file);
     try {
-      root = YAML::Load(text.str());
+      root = YAML::Load(text);
     } catch (const YAML::Exception& e) {
       throw IoError(file, e.mark.is_null() ? 0 : static_cast<std::size_t>(e.mark.line) + 1,
                     "invalid YAML: " + e.msg);
@@ -209,7 +209,7 @@ struct YamlDoc {
     if (std::abs(norm - 1.0) > kUnitQuaternionRejectTolerance)
       fail(join_key(key, "q_wxyz"), "is not a unit quaternion (norm " + shortest(norm) + ")");
     SE3 T;
-    T.q = std::abs(quat.squaredNorm() - 1.0) <= kUnitQuaternionKeepTolerance ? quat : quat.normalized();
+    T.q = unit_as_read(quat);
     T.t = Vec3(t[0], t[1], t[2]);
     return T;
   }
@@ -298,10 +298,13 @@ class CsvReader {
     return vec3(i);
   }
 
-  void require_increasing(Timestamp& previous, bool& has_previous, Timestamp t) const {
-    io::require_increasing(file_, previous, t, has_previous);
-    previous = t;
-    has_previous = true;
+  /// time(), which must be after the previous call's (streams whose rows share one clock).
+  Timestamp increasing_time() {
+    const Timestamp t = time();
+    io::require_increasing(file_, previous_t_, t, has_previous_t_);
+    previous_t_ = t;
+    has_previous_t_ = true;
+    return t;
   }
 
  private:
@@ -309,16 +312,15 @@ class CsvReader {
   std::vector<std::string> columns_;
   std::string line_;
   std::vector<std::string_view> fields_;
+  Timestamp previous_t_ = 0;
+  bool has_previous_t_ = false;
 };
 
 void read_imu(const fs::path& path, Recording& rec) {
   CsvReader csv(path, kImuHeader);
-  Timestamp previous = 0;
-  bool has_previous = false;
   while (csv.next()) {
     ImuSample s;
-    s.t = csv.time();
-    csv.require_increasing(previous, has_previous, s.t);
+    s.t = csv.increasing_time();
     const auto gyro = csv.optional_vec3(1);
     s.has_gyro = gyro.has_value();
     s.gyro = gyro.value_or(Vec3::Zero());
@@ -329,12 +331,9 @@ void read_imu(const fs::path& path, Recording& rec) {
 
 void read_gps(const fs::path& path, Recording& rec) {
   CsvReader csv(path, kGpsHeader);
-  Timestamp previous = 0;
-  bool has_previous = false;
   while (csv.next()) {
     GpsFix f;
-    f.t = csv.time();
-    csv.require_increasing(previous, has_previous, f.t);
+    f.t = csv.increasing_time();
     f.latitude_deg = csv.number(1, -90, 90);
     f.longitude_deg = csv.number(2, -180, 180);
     f.altitude_m = csv.number_or_nan(3);
@@ -352,12 +351,9 @@ void read_gps(const fs::path& path, Recording& rec) {
 
 void read_mag(const fs::path& path, Recording& rec) {
   CsvReader csv(path, kMagHeader);
-  Timestamp previous = 0;
-  bool has_previous = false;
   while (csv.next()) {
     MagSample s;
-    s.t = csv.time();
-    csv.require_increasing(previous, has_previous, s.t);
+    s.t = csv.increasing_time();
     s.field = csv.vec3(1);
     rec.mag.push_back(s);
   }
@@ -365,12 +361,9 @@ void read_mag(const fs::path& path, Recording& rec) {
 
 void read_groundtruth(const fs::path& path, Recording& rec) {
   CsvReader csv(path, kGroundtruthHeader);
-  Timestamp previous = 0;
-  bool has_previous = false;
   while (csv.next()) {
     GroundTruthState g;
-    g.t = csv.time();
-    csv.require_increasing(previous, has_previous, g.t);
+    g.t = csv.increasing_time();
     g.T_W_B.t = csv.vec3(1);
     const double qw = csv.number(4);
     const double qx = csv.number(5);
@@ -379,7 +372,7 @@ void read_groundtruth(const fs::path& path, Recording& rec) {
     const Quat q(qw, qx, qy, qz);
     if (std::abs(q.norm() - 1.0) > kUnitQuaternionRejectTolerance)
       csv.fail("quaternion (qw,qx,qy,qz) has norm " + shortest(q.norm()) + ", not 1");
-    g.T_W_B.q = std::abs(q.squaredNorm() - 1.0) <= kUnitQuaternionKeepTolerance ? q : q.normalized();
+    g.T_W_B.q = unit_as_read(q);
     g.v_W = csv.optional_vec3(8);
     g.b_g = csv.optional_vec3(11);
     g.b_a = csv.optional_vec3(14);

@@ -24,6 +24,15 @@ std::string shortest(double value) {
 
 }  // namespace
 
+void require_unit_quaternion(const TextFile& file, const Quat& q, const std::string& columns) {
+  const double norm = q.norm();
+  if (std::abs(norm - 1.0) <= kTumQuaternionNormTolerance) return;
+  std::ostringstream message;
+  message.precision(9);
+  message << "quaternion (" << columns << ") has norm " << norm << ", not within 1e-3 of 1";
+  file.fail(message.str());
+}
+
 StampedPose parse_tum_pose_fields(const TextFile& file, const std::vector<std::string_view>& fields) {
   require_field_count(file, fields, 8);
   StampedPose pose;
@@ -32,13 +41,7 @@ StampedPose parse_tum_pose_fields(const TextFile& file, const std::vector<std::s
                parse_double(file, fields[3], "tz"));
   const Quat q(parse_double(file, fields[7], "qw"), parse_double(file, fields[4], "qx"),
                parse_double(file, fields[5], "qy"), parse_double(file, fields[6], "qz"));
-  const double norm = q.norm();
-  if (!(std::abs(norm - 1.0) <= kTumQuaternionNormTolerance)) {
-    std::ostringstream message;
-    message.precision(9);
-    message << "quaternion (qx qy qz qw) has norm " << norm << ", not within 1e-3 of 1";
-    file.fail(message.str());
-  }
+  require_unit_quaternion(file, q, "qx qy qz qw");
   pose.T_W_B.q = canonical_unit(q);
   pose.T_W_B.t = t;
   return pose;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
+#include "test_support.hpp"
 
 namespace navaid {
 namespace {
@@ -433,16 +434,13 @@ TEST(Camera, BadCalibrationsRaiseConfigError) {
 TEST(Camera, ErrorMessageNamesCameraKeyAndRange) {
   CameraCalibration c = fisheye();
   c.distortion_coeffs = {0.1, 0.2, 0.3};
-  try {
-    make_camera_model(c);
-    FAIL() << "expected ConfigError";
-  } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("fisheye"), std::string::npos) << message;
-    EXPECT_NE(message.find("distortion_coeffs"), std::string::npos) << message;
-    EXPECT_NE(message.find("4 values"), std::string::npos) << message;
-    EXPECT_NE(message.find("got 3"), std::string::npos) << message;
-  }
+  const auto e = navaid::testing::expect_throw<ConfigError>([&] { make_camera_model(c); });
+  ASSERT_TRUE(e.has_value());
+  const std::string message = e->what();
+  EXPECT_NE(message.find("fisheye"), std::string::npos) << message;
+  EXPECT_NE(message.find("distortion_coeffs"), std::string::npos) << message;
+  EXPECT_NE(message.find("4 values"), std::string::npos) << message;
+  EXPECT_NE(message.find("got 3"), std::string::npos) << message;
 }
 
 }  // namespace

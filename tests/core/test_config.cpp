@@ -23,14 +23,8 @@ window: 10
 
 // Runs `f`, expects a ConfigError and returns its message.
 template <typename F>
-std::string config_error(F f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no ConfigError thrown";
-  return {};
+std::string config_error(F&& f) {
+  return navaid::testing::error_message<ConfigError>(std::forward<F>(f));
 }
 
 }  // namespace

@@ -129,12 +129,9 @@ TEST(EventStreamTest, MatchesStableSortOnRandomData) {
 TEST(EventStreamTest, RejectsUnsortedInput) {
   Recording r;
   r.gps = {gps(10), gps(5)};
-  try {
-    SensorEventStream stream(r);
-    FAIL() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("gps[1]"), std::string::npos) << e.what();
-  }
+  const std::string message =
+      navaid::testing::error_message<std::invalid_argument>([&] { SensorEventStream stream(r); });
+  EXPECT_NE(message.find("gps[1]"), std::string::npos) << message;
 }
 
 TEST(EventStreamTest, LoadsImagesOnlyWhenAsked) {

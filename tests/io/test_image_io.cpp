@@ -12,6 +12,7 @@ namespace navaid::io {
 namespace {
 
 namespace fs = std::filesystem;
+using navaid::testing::error_message;
 using navaid::testing::read_text;
 using navaid::testing::ScratchDir;
 using navaid::testing::write_text;
@@ -21,16 +22,6 @@ std::string imwrite(const fs::path& file, const cv::Mat& m) {
   return file.string();
 }
 
-template <typename Fn>
-std::string io_error_message(Fn&& fn) {
-  try {
-    fn();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected IoError";
-  return {};
-}
 
 class ImageIoTest : public ::testing::Test {
  protected:
@@ -115,7 +106,7 @@ TEST_F(ImageIoTest, WrittenPngsReadBackExactly) {
 TEST_F(ImageIoTest, MissingFile) {
   RgbdFrame f;
   f.depth_path = (dir_ / "nope.png").string();
-  const std::string message = io_error_message([&] { load_frame_images(f); });
+  const std::string message = error_message<IoError>([&] { load_frame_images(f); });
   EXPECT_NE(message.find("nope.png: image file does not exist"), std::string::npos) << message;
 }
 
@@ -129,7 +120,7 @@ TEST_F(ImageIoTest, CorruptPng) {
   for (const char* name : {"truncated.png", "garbage.png", "empty.png"}) {
     RgbdFrame f;
     f.intensity_path = (dir_ / name).string();
-    const std::string message = io_error_message([&] { load_frame_images(f); });
+    const std::string message = error_message<IoError>([&] { load_frame_images(f); });
     EXPECT_NE(message.find(name), std::string::npos) << message;
     EXPECT_TRUE(message.find("cannot decode") != std::string::npos || message.find("empty") != std::string::npos)
         << message;
@@ -139,24 +130,24 @@ TEST_F(ImageIoTest, CorruptPng) {
 TEST_F(ImageIoTest, DepthMustBe16BitSingleChannel) {
   RgbdFrame f;
   f.depth_path = imwrite(dir_ / "depth8.png", cv::Mat(3, 3, CV_8UC1, cv::Scalar(100)));
-  std::string message = io_error_message([&] { load_frame_images(f); });
+  std::string message = error_message<IoError>([&] { load_frame_images(f); });
   EXPECT_NE(message.find("16-bit single-channel PNG, found 8-bit 1-channel"), std::string::npos) << message;
   f.depth_path = imwrite(dir_ / "depth3.png", cv::Mat(3, 3, CV_16UC3, cv::Scalar(1000, 1000, 1000)));
-  message = io_error_message([&] { load_frame_images(f); });
+  message = error_message<IoError>([&] { load_frame_images(f); });
   EXPECT_NE(message.find("found 16-bit 3-channel"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, LabelsMustBe8BitSingleChannel) {
   RgbdFrame f;
   f.labels_path = imwrite(dir_ / "labels.png", cv::Mat(3, 3, CV_8UC3, cv::Scalar(1, 2, 3)));
-  const std::string message = io_error_message([&] { load_frame_images(f); });
+  const std::string message = error_message<IoError>([&] { load_frame_images(f); });
   EXPECT_NE(message.find("8-bit single-channel"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, SixteenBitIntensityIsRejected) {
   RgbdFrame f;
   f.intensity_path = imwrite(dir_ / "i16.png", cv::Mat(3, 3, CV_16UC1, cv::Scalar(1000)));
-  const std::string message = io_error_message([&] { load_frame_images(f); });
+  const std::string message = error_message<IoError>([&] { load_frame_images(f); });
   EXPECT_NE(message.find("8 bits per channel"), std::string::npos) << message;
 }
 
@@ -167,7 +158,7 @@ TEST_F(ImageIoTest, DepthInMetresInsteadOfMillimetresIsCaught) {
   metres.at<std::uint16_t>(5, 7) = 20;  // a 20 m wall, written as 20 "mm"
   RgbdFrame f;
   f.depth_path = imwrite(dir_ / "metres.png", metres);
-  const std::string message = io_error_message([&] { load_frame_images(f); });
+  const std::string message = error_message<IoError>([&] { load_frame_images(f); });
   EXPECT_NE(message.find("metres.png"), std::string::npos) << message;
   EXPECT_NE(message.find("looks like depth in metres stored as integers, not millimetres"), std::string::npos)
       << message;
@@ -191,11 +182,11 @@ TEST_F(ImageIoTest, DepthToPngUnits) {
   EXPECT_EQ(mm.at(1, 0), 1234);
   EXPECT_EQ(mm.at(2, 0), 65535);
   d.at(2, 0) = 65.6f;
-  std::string message = io_error_message([&] { depth_to_png_units(d, 0.001, "out.png"); });
+  std::string message = error_message<IoError>([&] { depth_to_png_units(d, 0.001, "out.png"); });
   EXPECT_NE(message.find("out.png: pixel (2, 0): depth 65.6"), std::string::npos) << message;
   EXPECT_NE(message.find("exceeds the 16-bit range"), std::string::npos) << message;
   d.at(2, 0) = -1;
-  message = io_error_message([&] { depth_to_png_units(d, 0.001, "out.png"); });
+  message = error_message<IoError>([&] { depth_to_png_units(d, 0.001, "out.png"); });
   EXPECT_NE(message.find("only finite depth >= 0"), std::string::npos) << message;
 }
 
@@ -207,12 +198,13 @@ TEST_F(ImageIoTest, ConvertDepthUnits) {
   EXPECT_EQ(mm.at(0, 0), 1000);
   EXPECT_EQ(mm.at(1, 0), 13107);
   EXPECT_EQ(convert_depth_units(tum, 0.001, 0.001, "d.png"), tum);
-  const std::string message = io_error_message([&] { convert_depth_units(tum, 0.01, 0.001, "d.png"); });
+  const std::string message = error_message<IoError>([&] { convert_depth_units(tum, 0.01, 0.001, "d.png"); });
   EXPECT_NE(message.find("exceeds the 16-bit range"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, WriterErrors) {
-  const std::string message = io_error_message([&] { write_png((dir_ / "no" / "such" / "dir.png").string(), ImageU8(2, 2)); });
+  const std::string message =
+      error_message<IoError>([&] { write_png((dir_ / "no" / "such" / "dir.png").string(), ImageU8(2, 2)); });
   EXPECT_NE(message.find("cannot open for writing"), std::string::npos) << message;
   EXPECT_THROW(write_png((dir_ / "two.png").string(), ImageU8(2, 2, 2)), IoError);
   EXPECT_THROW(write_png((dir_ / "empty.png").string(), ImageU16()), IoError);

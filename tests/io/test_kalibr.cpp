@@ -175,11 +175,9 @@ TEST_F(KalibrCamchain, CamerasMustStartAtCam0AndBeConsecutive) {
 TEST_F(KalibrCamchain, SyntaxErrorNamesLine) {
   replace_text(file_, "resolution: [752, 480]", "resolution: [752, 480");
   expect_io_error([&] { read_kalibr_camchain(file_); }, "camchain-imucam.yaml", 0, {"YAML syntax error"});
-  try {
-    read_kalibr_camchain(file_);
-  } catch (const IoError& e) {
-    EXPECT_GT(e.line(), 0u);
-  }
+  const auto e = testing::expect_throw<IoError>([&] { read_kalibr_camchain(file_); });
+  ASSERT_TRUE(e.has_value());
+  EXPECT_GT(e->line(), 0u);
 }
 
 TEST_F(KalibrCamchain, MissingFile) {

@@ -22,6 +22,7 @@ namespace navaid::io {
 namespace {
 
 namespace fs = std::filesystem;
+using navaid::testing::expect_throw;
 using navaid::testing::read_text;
 using navaid::testing::ScratchDir;
 using navaid::testing::write_text;
@@ -321,29 +322,22 @@ class NavaidRecordingTest : public ::testing::Test {
 
 template <typename Fn>
 IoError expect_io_error(Fn&& fn, const std::string& filename, std::size_t line, const std::string& needle) {
-  try {
-    fn();
-  } catch (const IoError& e) {
-    EXPECT_EQ(fs::path(e.file()).filename().string(), filename) << e.what();
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    return e;
-  }
-  ADD_FAILURE() << "expected IoError in " << filename << ":" << line << " containing '" << needle << "'";
-  return IoError("", "");
+  const auto e = expect_throw<IoError>(
+      std::forward<Fn>(fn), "IoError in " + filename + ":" + std::to_string(line) + " containing '" + needle + "'");
+  if (!e) return IoError("", "");
+  EXPECT_EQ(fs::path(e->file()).filename().string(), filename) << e->what();
+  EXPECT_EQ(e->line(), line) << e->what();
+  EXPECT_NE(std::string(e->what()).find(needle), std::string::npos) << e->what();
+  return *e;
 }
 
 template <typename Fn>
 void expect_config_error(Fn&& fn, const std::string& filename, const std::string& key, const std::string& needle) {
-  try {
-    fn();
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(fs::path(e.file()).filename().string(), filename) << e.what();
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    return;
-  }
-  ADD_FAILURE() << "expected ConfigError in " << filename << " key " << key;
+  const auto e = expect_throw<ConfigError>(std::forward<Fn>(fn), "ConfigError in " + filename + " key " + key);
+  if (!e) return;
+  EXPECT_EQ(fs::path(e->file()).filename().string(), filename) << e->what();
+  EXPECT_EQ(e->key(), key) << e->what();
+  EXPECT_NE(std::string(e->what()).find(needle), std::string::npos) << e->what();
 }
 
 TEST_F(NavaidRecordingTest, RoundTripKeepsEveryValue) {

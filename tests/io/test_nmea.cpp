@@ -15,6 +15,7 @@ namespace navaid::io {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::expect_throw;
 using testing::ScratchDir;
 using testing::write_text;
 
@@ -313,12 +314,9 @@ TEST(NmeaCorrupt, WarningsStayBoundedOnHugeCorruptInput) {
 
 TEST(NmeaCorrupt, MissingFileRaisesIoErrorNamingIt) {
   const fs::path missing = "/nonexistent/dir/capture.nmea";
-  try {
-    read_nmea_capture(missing);
-    FAIL() << "expected IoError";
-  } catch (const IoError& e) {
-    EXPECT_EQ(e.file(), missing.string());
-  }
+  const auto e = expect_throw<IoError>([&] { read_nmea_capture(missing); });
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->file(), missing.string());
 }
 
 TEST(NmeaCorrupt, EmptyOrNonNmeaFileRaisesIoError) {
@@ -328,12 +326,9 @@ TEST(NmeaCorrupt, EmptyOrNonNmeaFileRaisesIoError) {
   write_text(dir / "comments.nmea", "# only a header\n#\n");
   EXPECT_THROW(read_nmea_capture(dir / "comments.nmea"), IoError);
   write_text(dir / "binary.nmea", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
-  try {
-    read_nmea_capture(dir / "binary.nmea");
-    FAIL() << "expected IoError";
-  } catch (const IoError& e) {
-    EXPECT_EQ(e.file(), (dir / "binary.nmea").string());
-  }
+  const auto e = expect_throw<IoError>([&] { read_nmea_capture(dir / "binary.nmea"); });
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->file(), (dir / "binary.nmea").string());
 }
 
 // ---------------------------------------------------------------- epochs and fixes

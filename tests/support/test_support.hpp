@@ -1,8 +1,13 @@
 #pragma once
-// Shared helpers for the test suites: where the real data is, scratch folders, file writing.
+// Shared helpers for the test suites: where the real data is, scratch folders, file writing,
+// expected exceptions.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <cstdlib>
+#include <optional>
 #include <string>
+#include <utility>
 
 namespace navaid::testing {
 
@@ -28,6 +33,26 @@ class ScratchDir {
 
 void write_text(const std::filesystem::path& file, const std::string& content);
 std::string read_text(const std::filesystem::path& file);
+
+/// Runs `f` and returns the E it throws. When it throws nothing, records a test failure that
+/// names `context` and returns nullopt; an exception of another type propagates.
+template <class E, class F>
+std::optional<E> expect_throw(F&& f, const std::string& context = {}) {
+  try {
+    std::forward<F>(f)();
+  } catch (const E& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected an exception, none was thrown" << (context.empty() ? "" : ": ") << context;
+  return std::nullopt;
+}
+
+/// The message of the E that `f` throws; empty, with a test failure, when it throws none.
+template <class E, class F>
+std::string error_message(F&& f, const std::string& context = {}) {
+  const std::optional<E> e = expect_throw<E>(std::forward<F>(f), context);
+  return e ? std::string(e->what()) : std::string();
+}
 
 }  // namespace navaid::testing
 

@@ -45,4 +45,8 @@ Recording read_tum_trajectory_recording(const std::filesystem::path& path);
 /// name `file` and its current line.
 StampedPose parse_tum_pose_fields(const TextFile& file, const std::vector<std::string_view>& fields);
 
+/// Fails at `file`'s current line when the norm of `q` is further than kTumQuaternionNormTolerance
+/// from 1; `columns` names its four fields in the message (e.g. "qx qy qz qw").
+void require_unit_quaternion(const TextFile& file, const Quat& q, const std::string& columns);
+
 }  // namespace navaid::io
