@@ -47,11 +47,11 @@ struct GpsFix {
   Timestamp t = 0;
   double latitude_deg = 0.0;
   double longitude_deg = 0.0;
-  double altitude_m = 0.0;  ///< height above mean sea level (NaN when unknown)
-  double geoid_separation_m = 0.0;  ///< ellipsoid height = altitude_m + geoid_separation_m
+  double altitude_m = 0.0;  ///< height above mean sea level (NaN when unknown, e.g. 2D fixes)
+  double geoid_separation_m = 0.0;  ///< ellipsoid height = altitude_m + geoid_separation_m (NaN when unknown)
   GpsFixMode mode = GpsFixMode::k3D;
   int quality = 1;          ///< GGA quality indicator (1 GPS, 2 DGPS, 4 RTK fixed, ...)
-  int satellites = 0;
+  int satellites = 0;       ///< satellites used; -1 when the receiver does not say
   double hdop = 0.0;        ///< NaN when unknown
   /// Position covariance in the local ENU frame [m^2]; from GST when available, else HDOP-based.
   Mat3 covariance_enu = Mat3::Identity();
