@@ -35,14 +35,17 @@ std::vector<std::string> split_key(std::string_view key) {
   return parts;
 }
 
-// yaml-cpp's operator[] on a non-const node inserts; walking through clones keeps reads pure.
+// Reads go through const nodes (a non-const operator[] would insert the key) and rebind with
+// reset(): assigning one yaml-cpp node to another overwrites the referenced content instead.
 std::optional<YAML::Node> find(const YAML::Node& root, std::string_view key) {
-  YAML::Node node = YAML::Clone(root);
+  YAML::Node node;
+  node.reset(root);
   for (const auto& part : split_key(key)) {
     if (!node.IsMap()) return std::nullopt;
-    const YAML::Node child = node[part];
+    const YAML::Node& parent = node;
+    const YAML::Node child = parent[part];
     if (!child.IsDefined() || child.IsNull()) return std::nullopt;
-    node = child;
+    node.reset(child);
   }
   return node;
 }

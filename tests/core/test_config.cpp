@@ -113,3 +113,13 @@ TEST(Config, DumpRoundTripsThroughParse) {
   EXPECT_DOUBLE_EQ(d.get_double("sensor.imu.rate", {1, 1000}), 400.0);
   EXPECT_EQ(d.dump(), c.dump());
 }
+
+TEST(Config, ReadingNeverChangesTheConfiguration) {
+  const Config c = Config::parse(kYaml, "walk.yaml");
+  const std::string before = c.dump();
+  EXPECT_FALSE(c.has("sensor.gps.rate"));
+  EXPECT_DOUBLE_EQ(c.get_double("sensor.gps.rate", 5.0, {1, 10}), 5.0);
+  EXPECT_FALSE(c.has("sensor.imu.rate.deeper"));
+  c.get_double("sensor.imu.rate", {1, 1000});
+  EXPECT_EQ(c.dump(), before);
+}
