@@ -35,6 +35,21 @@ nlohmann::ordered_json summary_json(const io::RecordingSummary& s) {
                             {"dropped", st.dropped},
                             {"non_monotonic", st.non_monotonic}});
   }
+  if (!s.features.empty()) {
+    j["features"] = nlohmann::ordered_json::array();
+    for (const auto& f : s.features)
+      j["features"].push_back({{"camera", f.camera},
+                               {"frames", f.frames},
+                               {"empty_frames", f.empty_frames},
+                               {"observations", f.observations},
+                               {"tracks", f.tracks},
+                               {"mean_per_frame", f.mean_per_frame},
+                               {"depth_fraction", f.depth_fraction}});
+  }
+  if (s.landmarks > 0) {
+    j["landmarks"] = s.landmarks;
+    j["tracks_without_landmark"] = s.tracks_without_landmark;
+  }
   if (s.groundtruth) j["groundtruth"] = track_json(*s.groundtruth);
   if (s.gps_track) j["gps_track"] = track_json(*s.gps_track);
   j["gps_fixes_without_position"] = s.gps_fixes_without_position;
@@ -68,6 +83,14 @@ void print_summary(const io::RecordingSummary& s) {
                                st.rate_hz, st.duration_s, format_seconds(st.first), format_seconds(st.last), st.gaps,
                                st.dropped);
   }
+  for (const auto& f : s.features)
+    std::cout << fmt::format("{:<13}{}: {} frames ({} without features), {:.1f} per frame, {:.1f}% with depth, "
+                             "{} tracks\n",
+                             "features", f.camera, f.frames, f.empty_frames, f.mean_per_frame,
+                             100.0 * f.depth_fraction, f.tracks);
+  if (s.landmarks > 0)
+    std::cout << fmt::format("{:<13}{} ({} feature tracks without one)\n", "landmarks", s.landmarks,
+                             s.tracks_without_landmark);
   if (s.groundtruth) print_track("ground truth", *s.groundtruth, "poses");
   if (s.gps_track) print_track("GNSS track", *s.gps_track, "fixes");
   if (s.gps_fixes_without_position > 0)

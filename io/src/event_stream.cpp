@@ -9,7 +9,7 @@
 namespace navaid::io {
 namespace {
 
-constexpr const char* kSensorNames[] = {"imu", "mag", "gps", "frames"};
+constexpr const char* kSensorNames[] = {"imu", "mag", "gps", "features", "frames"};
 
 // std heap functions build a max-heap; "later" as less-than puts the earliest (t, rank) on top.
 struct Later {
@@ -36,6 +36,7 @@ SensorEventStream::SensorEventStream(const Recording& recording, EventStreamOpti
   require_sorted(recording.imu, static_cast<int>(Sensor::kImu));
   require_sorted(recording.mag, static_cast<int>(Sensor::kMag));
   require_sorted(recording.gps, static_cast<int>(Sensor::kGps));
+  require_sorted(recording.features, static_cast<int>(Sensor::kFeatures));
   require_sorted(recording.frames, static_cast<int>(Sensor::kFrame));
   for (std::size_t s = 0; s < kSensors; ++s) total_ += size_of(static_cast<int>(s));
   reset();
@@ -46,6 +47,7 @@ std::size_t SensorEventStream::size_of(int sensor) const {
     case Sensor::kImu: return recording_.imu.size();
     case Sensor::kMag: return recording_.mag.size();
     case Sensor::kGps: return recording_.gps.size();
+    case Sensor::kFeatures: return recording_.features.size();
     case Sensor::kFrame: return recording_.frames.size();
   }
   return 0;
@@ -56,6 +58,7 @@ Timestamp SensorEventStream::time_at(int sensor, std::size_t index) const {
     case Sensor::kImu: return recording_.imu[index].t;
     case Sensor::kMag: return recording_.mag[index].t;
     case Sensor::kGps: return recording_.gps[index].t;
+    case Sensor::kFeatures: return recording_.features[index].t;
     case Sensor::kFrame: return recording_.frames[index].t;
   }
   return 0;
@@ -100,6 +103,7 @@ std::optional<SensorEvent> SensorEventStream::next() {
     case Sensor::kImu: return SensorEvent(recording_.imu[i]);
     case Sensor::kMag: return SensorEvent(recording_.mag[i]);
     case Sensor::kGps: return SensorEvent(recording_.gps[i]);
+    case Sensor::kFeatures: return SensorEvent(recording_.features[i]);
     case Sensor::kFrame: {
       SensorEvent event(recording_.frames[i]);
       if (options_.load_images) load_frame_images(std::get<RgbdFrame>(event));
@@ -118,7 +122,8 @@ void SensorEventStream::skip_until(Timestamp t) {
   };
   const std::array<std::size_t, kSensors> target = {
       first_not_before(recording_.imu, cursor_[0]), first_not_before(recording_.mag, cursor_[1]),
-      first_not_before(recording_.gps, cursor_[2]), first_not_before(recording_.frames, cursor_[3])};
+      first_not_before(recording_.gps, cursor_[2]), first_not_before(recording_.features, cursor_[3]),
+      first_not_before(recording_.frames, cursor_[4])};
   heap_size_ = 0;
   for (std::size_t s = 0; s < kSensors; ++s) {
     consumed_ += target[s] - cursor_[s];

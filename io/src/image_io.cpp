@@ -117,6 +117,36 @@ ImageU8 read_label_image(const std::string& path) {
   return to_image<std::uint8_t>(m);
 }
 
+ImageU8 read_confidence_png_raw(const std::string& path) {
+  const cv::Mat m = decode_file(path);
+  if (m.depth() != CV_8U || m.channels() != 1)
+    throw IoError(path, "label confidence image must be an 8-bit single-channel PNG (round(255 p)), found " +
+                            describe(m));
+  return to_image<std::uint8_t>(m);
+}
+
+ImageF32 read_confidence_png(const std::string& path) {
+  const ImageU8 raw = read_confidence_png_raw(path);
+  ImageF32 p(raw.width, raw.height, 1);
+  for (std::size_t i = 0; i < raw.pixels.size(); ++i) p.pixels[i] = static_cast<float>(raw.pixels[i] / 255.0);
+  return p;
+}
+
+ImageU8 confidence_to_png_units(const ImageF32& probability, const std::string& path) {
+  if (probability.channels != 1) throw IoError(path, "label confidence must have one channel");
+  ImageU8 out(probability.width, probability.height, 1);
+  for (int y = 0; y < probability.height; ++y) {
+    for (int x = 0; x < probability.width; ++x) {
+      const double p = probability.at(x, y);
+      if (!(p >= 0 && p <= 1))  // also catches NaN
+        throw IoError(path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): label confidence " +
+                                std::to_string(p) + " is not a probability in [0, 1]");
+      out.at(x, y) = static_cast<std::uint8_t>(std::lround(255.0 * p));
+    }
+  }
+  return out;
+}
+
 void check_depth_units(const ImageU16& raw, double scale_m, const std::string& path) {
   std::uint16_t largest = 0;
   for (const std::uint16_t v : raw.pixels) largest = std::max(largest, v);
@@ -213,12 +243,22 @@ void load_frame_images(RgbdFrame& frame) {
   if (!frame.intensity_path.empty()) frame.intensity = read_intensity_image(frame.intensity_path);
   if (!frame.depth_path.empty()) frame.depth = read_depth_png(frame.depth_path, frame.depth_png_scale_m);
   if (!frame.labels_path.empty()) frame.labels = read_label_image(frame.labels_path);
+  if (!frame.confidence_path.empty()) {
+    ImageF32 confidence = read_confidence_png(frame.confidence_path);
+    if (frame.labels && (confidence.width != frame.labels->width || confidence.height != frame.labels->height))
+      throw IoError(frame.confidence_path, "label confidence is " + std::to_string(confidence.width) + "x" +
+                                               std::to_string(confidence.height) + " but the labels are " +
+                                               std::to_string(frame.labels->width) + "x" +
+                                               std::to_string(frame.labels->height));
+    frame.label_confidence = std::move(confidence);
+  }
 }
 
 void release_frame_images(RgbdFrame& frame) {
   frame.intensity = ImageU8();
   frame.depth = ImageF32();
   frame.labels.reset();
+  frame.label_confidence.reset();
   frame.class_probabilities.reset();
 }
 

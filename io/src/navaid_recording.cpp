@@ -34,24 +34,42 @@ constexpr const char* kGpsCsv = "gps.csv";
 constexpr const char* kMagCsv = "mag.csv";
 constexpr const char* kGroundtruthCsv = "groundtruth.csv";
 constexpr const char* kFramesCsv = "frames.csv";
+constexpr const char* kFeaturesCsv = "features.csv";
+constexpr const char* kLandmarksCsv = "landmarks.csv";
 constexpr const char* kRgbDir = "rgb";
 constexpr const char* kDepthDir = "depth";
 constexpr const char* kLabelsDir = "labels";
+constexpr const char* kConfidenceDir = "confidence";
 
 constexpr const char* kImuHeader = "t_ns,gx,gy,gz,ax,ay,az";
 constexpr const char* kGpsHeader =
     "t_ns,lat,lon,alt,geoid_sep,mode,quality,satellites,hdop,cov_ee,cov_en,cov_eu,cov_nn,cov_nu,cov_uu";
 constexpr const char* kMagHeader = "t_ns,mx,my,mz";
 constexpr const char* kGroundtruthHeader = "t_ns,px,py,pz,qw,qx,qy,qz,vx,vy,vz,bgx,bgy,bgz,bax,bay,baz";
-constexpr const char* kFramesHeader = "t_ns,camera,index,intensity,depth,labels";
+constexpr const char* kFramesHeader = "t_ns,camera,index,intensity,depth,labels,confidence";
+constexpr const char* kFramesHeaderV1 = "t_ns,camera,index,intensity,depth,labels";
+constexpr const char* kFeaturesHeader = "t_ns,camera,track_id,u,v,depth";
+constexpr const char* kLandmarksHeader = "track_id,x,y,z";
 
 // Sensor names of recording.yaml's `sensors` list, each with its CSV file.
 struct StreamFile {
   const char* sensor;
   const char* file;
+  int since_version;  // first format version that has it
 };
 constexpr StreamFile kStreams[] = {
-    {"imu", kImuCsv}, {"frames", kFramesCsv}, {"gps", kGpsCsv}, {"mag", kMagCsv}, {"groundtruth", kGroundtruthCsv}};
+    {"imu", kImuCsv, 1},
+    {"frames", kFramesCsv, 1},
+    {"gps", kGpsCsv, 1},
+    {"mag", kMagCsv, 1},
+    {"groundtruth", kGroundtruthCsv, 1},
+    {"features", kFeaturesCsv, 2},
+    {"landmarks", kLandmarksCsv, 2},
+};
+constexpr const char* kSensorList = "imu, frames, gps, mag, groundtruth, features, landmarks";
+
+// Track ids are std::uint64_t in memory but read through the signed CSV integer parser.
+constexpr long long kMaxTrackId = std::numeric_limits<long long>::max();
 
 // A quaternion read from a file is kept bit for bit when it is unit to double precision, so that
 // read-write cycles are byte-stable; renormalizing an already unit quaternion can flip last bits.
@@ -396,8 +414,8 @@ std::string frame_image_path(const CsvReader& csv, const fs::path& folder, std::
   return full.string();
 }
 
-void read_frames(const fs::path& path, const fs::path& folder, Recording& rec) {
-  CsvReader csv(path, kFramesHeader);
+void read_frames(const fs::path& path, const fs::path& folder, int version, Recording& rec) {
+  CsvReader csv(path, version >= 2 ? kFramesHeader : kFramesHeaderV1);
   std::set<std::string> calibrated;
   for (const auto& c : rec.calibration.cameras) calibrated.insert(c.name);
   std::map<std::string, Timestamp> last_of_camera;
@@ -420,6 +438,11 @@ void read_frames(const fs::path& path, const fs::path& folder, Recording& rec) {
     f.intensity_path = frame_image_path(csv, folder, 3);
     f.depth_path = frame_image_path(csv, folder, 4);
     f.labels_path = frame_image_path(csv, folder, 5);
+    if (version >= 2) {
+      f.confidence_path = frame_image_path(csv, folder, 6);
+      if (!f.confidence_path.empty() && f.labels_path.empty())
+        csv.fail("column 'confidence': a label confidence needs labels (column 'labels' is empty)");
+    }
     f.depth_png_scale_m = kNavaidDepthScaleM;
     if (!calibrated.count(f.camera))
       rec.report.warn(path.string(), "frames of camera '" + f.camera + "', which calibration.yaml does not list");
@@ -427,10 +450,83 @@ void read_frames(const fs::path& path, const fs::path& folder, Recording& rec) {
   }
 }
 
+void read_features(const fs::path& path, Recording& rec) {
+  CsvReader csv(path, kFeaturesHeader);
+  std::set<std::string> calibrated;
+  for (const auto& c : rec.calibration.cameras) calibrated.insert(c.name);
+  std::map<std::string, Timestamp> last_of_camera;
+  bool marker_frame = false;  // the current frame is a "no features" marker row
+  while (csv.next()) {
+    const Timestamp t = csv.time();
+    const std::string camera(csv.field(1));
+    if (!valid_camera_name(camera))
+      csv.fail("column 'camera': '" + camera + "' is not a valid camera name (letter, then letters, digits, _ or -)");
+    const bool same_frame =
+        !rec.features.empty() && rec.features.back().t == t && rec.features.back().camera == camera;
+    if (!same_frame) {
+      if (!rec.features.empty() && t < rec.features.back().t)
+        csv.fail("rows must be in time order: t_ns " + std::to_string(t) + " after " +
+                 std::to_string(rec.features.back().t));
+      const auto [last, first_of_camera] = last_of_camera.try_emplace(camera, t);
+      if (!first_of_camera && last->second == t)  // earlier times are caught by the row order
+        csv.fail("camera '" + camera + "' has a second frame at t_ns " + std::to_string(t) +
+                 " (the rows of one frame must be consecutive)");
+      last->second = t;
+      if (!calibrated.count(camera))
+        rec.report.warn(path.string(), "features of camera '" + camera + "', which calibration.yaml does not list");
+      FeatureFrame frame;
+      frame.t = t;
+      frame.camera = camera;
+      rec.features.push_back(std::move(frame));
+      marker_frame = false;
+    }
+    FeatureFrame& frame = rec.features.back();
+    const bool marker = csv.empty(2) && csv.empty(3) && csv.empty(4) && csv.empty(5);
+    if (marker || marker_frame) {
+      if (same_frame)
+        csv.fail("a row with empty track_id, u, v and depth marks a frame without features and must be the only "
+                 "row of its frame");
+      marker_frame = true;
+      continue;
+    }
+    FeatureObservation obs;
+    obs.track_id = static_cast<std::uint64_t>(csv.integer(2, 0, kMaxTrackId));
+    if (!frame.features.empty() && obs.track_id <= frame.features.back().track_id)
+      csv.fail("column 'track_id': " + std::to_string(obs.track_id) + " after " +
+               std::to_string(frame.features.back().track_id) +
+               " in the same frame (track ids must be strictly increasing within a frame, no duplicates)");
+    const double u = csv.number(3);
+    const double v = csv.number(4);
+    obs.uv = Eigen::Vector2d(u, v);
+    if (!csv.empty(5)) {
+      const double depth = csv.number(5);
+      if (!(depth > 0))
+        csv.fail("column 'depth': " + std::string(csv.field(5)) +
+                 " must be positive (leave the field empty when there is no depth)");
+      obs.depth_m = depth;
+    }
+    frame.features.push_back(obs);
+  }
+}
+
+void read_landmarks(const fs::path& path, Recording& rec) {
+  CsvReader csv(path, kLandmarksHeader);
+  while (csv.next()) {
+    Landmark l;
+    l.id = static_cast<std::uint64_t>(csv.integer(0, 0, kMaxTrackId));
+    if (!rec.landmarks.empty() && l.id <= rec.landmarks.back().id)
+      csv.fail("column 'track_id': " + std::to_string(l.id) + " after " + std::to_string(rec.landmarks.back().id) +
+               " (track ids must be strictly increasing)");
+    l.p_W = csv.vec3(1);
+    rec.landmarks.push_back(l);
+  }
+}
+
 // ----------------------------------------------------------------------------------------------
 // YAML files.
 
-void read_recording_yaml(const fs::path& path, Recording& rec, std::set<std::string>& sensors) {
+// Returns the format version.
+int read_recording_yaml(const fs::path& path, Recording& rec, std::set<std::string>& sensors) {
   const YamlDoc doc(path);
   const std::string format = doc.text(doc.require(doc.root, "", "format"), "format");
   if (format != kNavaidFormatName)
@@ -439,19 +535,23 @@ void read_recording_yaml(const fs::path& path, Recording& rec, std::set<std::str
   // a confusing complaint about a key that version added or renamed.
   const long long version = doc.integer(doc.require(doc.root, "", "version"), "version", 0,
                                         std::numeric_limits<int>::max());
-  if (version != kNavaidFormatVersion)
+  if (version < kNavaidOldestVersion || version > kNavaidFormatVersion)
     doc.fail("version", "unsupported navaid recording version " + std::to_string(version) +
-                            "; this build reads version " + std::to_string(kNavaidFormatVersion));
+                            "; this build reads versions " + std::to_string(kNavaidOldestVersion) + " to " +
+                            std::to_string(kNavaidFormatVersion));
   doc.only_keys(doc.root, "", {"format", "version", "sensors", "origin"});
 
   const YAML::Node list = doc.require(doc.root, "", "sensors");
-  if (!list.IsSequence()) doc.fail("sensors", "must be a list such as [imu, frames, gps, mag, groundtruth]");
+  if (!list.IsSequence()) doc.fail("sensors", std::string("must be a list of sensors among ") + kSensorList);
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string key = "sensors[" + std::to_string(i) + "]";
     const std::string name = doc.text(list[i], key);
-    bool known = false;
-    for (const auto& s : kStreams) known = known || name == s.sensor;
-    if (!known) doc.fail(key, "unknown sensor '" + name + "' (allowed: imu, frames, gps, mag, groundtruth)");
+    const auto* stream = std::find_if(std::begin(kStreams), std::end(kStreams),
+                                      [&](const StreamFile& s) { return name == s.sensor; });
+    if (stream == std::end(kStreams)) doc.fail(key, "unknown sensor '" + name + "' (allowed: " + kSensorList + ")");
+    if (stream->since_version > version)
+      doc.fail(key, "sensor '" + name + "' needs format version " + std::to_string(stream->since_version) +
+                        " (the file says version " + std::to_string(version) + ")");
     if (!sensors.insert(name).second) doc.fail(key, "sensor '" + name + "' is listed twice");
   }
 
@@ -464,6 +564,7 @@ void read_recording_yaml(const fs::path& path, Recording& rec, std::set<std::str
     o.height_m = doc.number(doc.require(origin, "origin", "height_m"), "origin.height_m");
     rec.origin = o;
   }
+  return static_cast<int>(version);
 }
 
 constexpr double kHuge = 1e300;
@@ -591,11 +692,15 @@ class CsvWriter {
     text_ = std::string(header) + "\n";
   }
 
+  /// Starts a row whose first field is the time stamp.
   void begin_row(Timestamp t, std::size_t sample) {
+    begin_row(sample);
+    integer(t);
+  }
+  /// Starts a row with no field yet (files without a time column).
+  void begin_row(std::size_t sample) {
     sample_ = sample;
     column_ = 0;
-    text_ += std::to_string(t);
-    ++column_;
   }
   void end_row() {
     if (column_ != columns_.size()) throw std::logic_error("navaid csv writer: wrong column count in " + file_);
@@ -621,13 +726,15 @@ class CsvWriter {
     vec3(*v);
   }
   void field(const std::string& text) {
-    text_ += ',';
+    if (column_ > 0) text_ += ',';
     text_ += text;
     ++column_;
   }
   [[noreturn]] void fail(const std::string& message) const {
-    throw IoError(file_, "sample " + std::to_string(sample_) + ": " + message);
+    throw IoError(file_, noun_ + " " + std::to_string(sample_) + ": " + message);
   }
+  /// What one element of the written vector is called in messages ("sample", "frame", ...).
+  void set_noun(std::string noun) { noun_ = std::move(noun); }
   void require_increasing(const std::optional<Timestamp>& previous, Timestamp t) const {
     if (previous && t <= *previous)
       fail("timestamp " + format_seconds(t) + " s is not after the previous sample's " + format_seconds(*previous) +
@@ -640,6 +747,7 @@ class CsvWriter {
   std::string file_;
   std::vector<std::string> columns_;
   std::string text_;
+  std::string noun_ = "sample";
   std::size_t sample_ = 0;
   std::size_t column_ = 0;
 };
@@ -680,7 +788,8 @@ class YamlWriter {
 
 std::string calibration_text(const RigCalibration& rig, const fs::path& path) {
   YamlWriter y(path.string());
-  y.line("# navaid recording calibration, format version 1 (docs/recording-format.md)");
+  y.line("# navaid recording calibration, format version " + std::to_string(kNavaidFormatVersion) +
+         " (docs/recording-format.md)");
   if (rig.cameras.empty()) y.line("cameras: []");
   else y.line("cameras:");
   std::set<std::string> names;
@@ -836,7 +945,7 @@ std::string groundtruth_text(const std::vector<GroundTruthState>& states, const 
 // Planned output of one frame: where each image comes from and goes to.
 struct FramePlan {
   const RgbdFrame* frame;
-  std::string intensity, depth, labels;  // relative output paths, empty when absent
+  std::string intensity, depth, labels, confidence;  // relative output paths, empty when absent
 };
 
 std::string frames_text(const std::vector<RgbdFrame>& frames, const fs::path& path, const NavaidWriteOptions& options,
@@ -855,24 +964,45 @@ std::string frames_text(const std::vector<RgbdFrame>& frames, const fs::path& pa
     w.require_increasing(last == last_of_camera.end() ? std::nullopt : std::optional<Timestamp>(last->second), f.t);
     last_of_camera[f.camera] = f.t;
     if (f.class_probabilities && !options.drop_class_probabilities)
-      w.fail("carries class probabilities, which navaid recording version 1 cannot store "
-             "(set drop_class_probabilities to write without them)");
+      w.fail("carries per-class probabilities, which the navaid recording format does not store "
+             "(store label_confidence instead, or set drop_class_probabilities to write without them)");
     if (f.index > static_cast<std::uint64_t>(std::numeric_limits<long long>::max())) w.fail("frame index too large");
 
-    FramePlan plan{&f, {}, {}, {}};
+    FramePlan plan{&f, {}, {}, {}, {}};
     const std::string stem = f.camera + "_" + std::to_string(f.t) + ".png";
     if (!f.intensity_path.empty() || !f.intensity.empty()) plan.intensity = std::string(kRgbDir) + "/" + stem;
     if (!f.depth_path.empty() || !f.depth.empty()) plan.depth = std::string(kDepthDir) + "/" + stem;
     if (!f.labels_path.empty() || f.labels) plan.labels = std::string(kLabelsDir) + "/" + stem;
+    if (!f.confidence_path.empty() || f.label_confidence) {
+      if (plan.labels.empty()) w.fail("has a label confidence but no labels");
+      plan.confidence = std::string(kConfidenceDir) + "/" + stem;
+    }
     w.field(f.camera);
     w.integer(static_cast<long long>(f.index));
     w.field(plan.intensity);
     w.field(plan.depth);
     w.field(plan.labels);
+    w.field(plan.confidence);
     w.end_row();
     plans.push_back(plan);
   }
   return w.text();
+}
+
+// images_in_place: each image must already be where the plan puts it.
+void check_frame_images_in_place(const FramePlan& plan, const fs::path& folder) {
+  const RgbdFrame& f = *plan.frame;
+  const std::pair<const std::string*, const std::string*> pairs[] = {
+      {&plan.intensity, &f.intensity_path}, {&plan.depth, &f.depth_path}, {&plan.labels, &f.labels_path},
+      {&plan.confidence, &f.confidence_path}};
+  for (const auto& [planned, source] : pairs) {
+    if (planned->empty()) continue;
+    const fs::path target = folder / *planned;
+    std::error_code ec;
+    if (source->empty() || !fs::equivalent(*source, target, ec))
+      throw IoError(target.string(), "images_in_place: frame " + std::to_string(f.index) + " has its image at '" +
+                                         *source + "', not at the recording's own path");
+  }
 }
 
 void write_frame_images(const FramePlan& plan, const fs::path& folder, int compression) {
@@ -890,15 +1020,78 @@ void write_frame_images(const FramePlan& plan, const fs::path& folder, int compr
       write_png(out, depth_to_png_units(f.depth, kNavaidDepthScaleM, out), compression);
     }
   }
-  if (!plan.labels.empty()) {
-    const std::string out = (folder / plan.labels).string();
-    if (!f.labels_path.empty()) {
-      write_png(out, read_label_image(f.labels_path), compression);
-    } else {
-      if (f.labels->channels != 1) throw IoError(out, "labels must have one channel (class id per pixel)");
-      write_png(out, *f.labels, compression);
+  if (plan.labels.empty()) return;
+  const std::string labels_out = (folder / plan.labels).string();
+  const ImageU8 labels = f.labels_path.empty() ? *f.labels : read_label_image(f.labels_path);
+  if (labels.channels != 1) throw IoError(labels_out, "labels must have one channel (class id per pixel)");
+  write_png(labels_out, labels, compression);
+  if (plan.confidence.empty()) return;
+  const std::string out = (folder / plan.confidence).string();
+  const ImageU8 confidence = f.confidence_path.empty() ? confidence_to_png_units(*f.label_confidence, out)
+                                                       : read_confidence_png_raw(f.confidence_path);
+  if (confidence.width != labels.width || confidence.height != labels.height)
+    throw IoError(out, "label confidence is " + std::to_string(confidence.width) + "x" +
+                           std::to_string(confidence.height) + " but the labels are " + std::to_string(labels.width) +
+                           "x" + std::to_string(labels.height));
+  write_png(out, confidence, compression);
+}
+
+std::string features_text(const std::vector<FeatureFrame>& frames, const fs::path& path) {
+  CsvWriter w(path, kFeaturesHeader);
+  w.set_noun("feature frame");
+  std::map<std::string, Timestamp> last_of_camera;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const FeatureFrame& f = frames[i];
+    w.begin_row(i);  // for the checks' messages; the rows follow
+    if (!valid_camera_name(f.camera))
+      w.fail("camera '" + f.camera + "' is not a valid camera name (letter, then letters, digits, _ or -)");
+    if (i > 0 && f.t < frames[i - 1].t) w.fail("feature frames must be in time order");
+    const auto last = last_of_camera.find(f.camera);
+    w.require_increasing(last == last_of_camera.end() ? std::nullopt : std::optional<Timestamp>(last->second), f.t);
+    last_of_camera[f.camera] = f.t;
+    if (f.features.empty()) {  // the "frame without features" marker row
+      w.begin_row(f.t, i);
+      w.field(f.camera);
+      for (int k = 0; k < 4; ++k) w.field("");
+      w.end_row();
+    }
+    for (std::size_t k = 0; k < f.features.size(); ++k) {
+      const FeatureObservation& o = f.features[k];
+      if (k > 0 && o.track_id <= f.features[k - 1].track_id)
+        w.fail("track id " + std::to_string(o.track_id) + " after " + std::to_string(f.features[k - 1].track_id) +
+               " (track ids must be strictly increasing within a frame)");
+      if (o.track_id > static_cast<std::uint64_t>(kMaxTrackId)) w.fail("track id too large");
+      if (o.depth_m && !(std::isfinite(*o.depth_m) && *o.depth_m > 0))
+        w.fail("track " + std::to_string(o.track_id) + ": depth " + shortest(*o.depth_m) +
+               " is not a positive finite number (use no depth instead)");
+      w.begin_row(f.t, i);
+      w.field(f.camera);
+      w.integer(static_cast<long long>(o.track_id));
+      w.number(o.uv.x());
+      w.number(o.uv.y());
+      if (o.depth_m) w.number(*o.depth_m);
+      else w.field("");
+      w.end_row();
     }
   }
+  return w.text();
+}
+
+std::string landmarks_text(const std::vector<Landmark>& landmarks, const fs::path& path) {
+  CsvWriter w(path, kLandmarksHeader);
+  w.set_noun("landmark");
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const Landmark& l = landmarks[i];
+    w.begin_row(i);
+    if (i > 0 && l.id <= landmarks[i - 1].id)
+      w.fail("track id " + std::to_string(l.id) + " after " + std::to_string(landmarks[i - 1].id) +
+             " (landmarks must be sorted by strictly increasing track id)");
+    if (l.id > static_cast<std::uint64_t>(kMaxTrackId)) w.fail("track id too large");
+    w.integer(static_cast<long long>(l.id));
+    w.vec3(l.p_W);
+    w.end_row();
+  }
+  return w.text();
 }
 
 bool is_inside(const fs::path& file, const fs::path& folder) {
@@ -915,8 +1108,10 @@ bool is_inside(const fs::path& file, const fs::path& folder) {
 }
 
 // The recording's own entries, removed before an overwrite.
-const char* const kOwnEntries[] = {kRecordingYaml, kCalibrationYaml, kImuCsv, kGpsCsv, kMagCsv, kGroundtruthCsv,
-                                   kFramesCsv,     kRgbDir,          kDepthDir, kLabelsDir};
+const char* const kOwnEntries[] = {kRecordingYaml, kCalibrationYaml, kImuCsv,       kGpsCsv,
+                                   kMagCsv,        kGroundtruthCsv,  kFramesCsv,    kFeaturesCsv,
+                                   kLandmarksCsv,  kRgbDir,          kDepthDir,     kLabelsDir,
+                                   kConfidenceDir};
 
 void prepare_folder(const Recording& rec, const fs::path& folder, const NavaidWriteOptions& options) {
   std::error_code ec;
@@ -925,11 +1120,16 @@ void prepare_folder(const Recording& rec, const fs::path& folder, const NavaidWr
     if (!fs::is_empty(folder, ec)) {
       if (!options.overwrite)
         throw IoError(folder.string(), "folder is not empty (set overwrite to replace a recording there)");
-      for (const auto& f : rec.frames)
-        for (const std::string* p : {&f.intensity_path, &f.depth_path, &f.labels_path})
-          if (!p->empty() && is_inside(*p, folder))
-            throw IoError(folder.string(), "cannot overwrite the folder that frame images are read from (" + *p + ")");
-      for (const char* entry : kOwnEntries) fs::remove_all(folder / entry, ec);
+      if (!options.images_in_place)
+        for (const auto& f : rec.frames)
+          for (const std::string* p : {&f.intensity_path, &f.depth_path, &f.labels_path, &f.confidence_path})
+            if (!p->empty() && is_inside(*p, folder))
+              throw IoError(folder.string(), "cannot overwrite the folder that frame images are read from (" + *p + ")");
+      for (const char* entry : kOwnEntries) {
+        const std::string_view e(entry);
+        const bool image_dir = e == kRgbDir || e == kDepthDir || e == kLabelsDir || e == kConfidenceDir;
+        if (!(options.images_in_place && image_dir)) fs::remove_all(folder / entry, ec);
+      }
       if (ec) throw IoError(folder.string(), "cannot remove the previous recording: " + ec.message());
     }
   }
@@ -953,7 +1153,7 @@ Recording read_navaid_recording(const fs::path& folder) {
   rec.path = folder.string();
   rec.format = "navaid";
   std::set<std::string> sensors;
-  read_recording_yaml(folder / kRecordingYaml, rec, sensors);
+  const int version = read_recording_yaml(folder / kRecordingYaml, rec, sensors);
   rec.calibration = read_calibration_yaml(folder / kCalibrationYaml);
 
   for (const auto& stream : kStreams) {
@@ -968,10 +1168,12 @@ Recording read_navaid_recording(const fs::path& folder) {
       throw IoError(file.string(), std::string("missing, but recording.yaml lists sensor '") + stream.sensor + "'");
     const std::string name = stream.sensor;
     if (name == "imu") read_imu(file, rec);
-    else if (name == "frames") read_frames(file, folder, rec);
+    else if (name == "frames") read_frames(file, folder, version, rec);
     else if (name == "gps") read_gps(file, rec);
     else if (name == "mag") read_mag(file, rec);
-    else read_groundtruth(file, rec);
+    else if (name == "groundtruth") read_groundtruth(file, rec);
+    else if (name == "features") read_features(file, rec);
+    else read_landmarks(file, rec);
   }
   return rec;
 }
@@ -1001,6 +1203,14 @@ void write_navaid_recording(const Recording& rec, const fs::path& folder, const 
     sensors.emplace_back("groundtruth");
     csv_files.emplace_back(kGroundtruthCsv, groundtruth_text(rec.groundtruth, folder / kGroundtruthCsv));
   }
+  if (!rec.features.empty()) {
+    sensors.emplace_back("features");
+    csv_files.emplace_back(kFeaturesCsv, features_text(rec.features, folder / kFeaturesCsv));
+  }
+  if (!rec.landmarks.empty()) {
+    sensors.emplace_back("landmarks");
+    csv_files.emplace_back(kLandmarksCsv, landmarks_text(rec.landmarks, folder / kLandmarksCsv));
+  }
   const std::string calibration = calibration_text(rec.calibration, folder / kCalibrationYaml);
   const std::string recording = recording_text(rec, folder / kRecordingYaml, sensors);
 
@@ -1011,17 +1221,20 @@ void write_navaid_recording(const Recording& rec, const fs::path& folder, const 
     fs::create_directories(folder / name, ec);
     if (ec) throw IoError((folder / name).string(), "cannot create folder: " + ec.message());
   };
-  bool any_intensity = false, any_depth = false, any_labels = false;
+  bool any_intensity = false, any_depth = false, any_labels = false, any_confidence = false;
   for (const auto& p : plans) {
     any_intensity = any_intensity || !p.intensity.empty();
     any_depth = any_depth || !p.depth.empty();
     any_labels = any_labels || !p.labels.empty();
+    any_confidence = any_confidence || !p.confidence.empty();
   }
   make_dir(kRgbDir, any_intensity);
   make_dir(kDepthDir, any_depth);
   make_dir(kLabelsDir, any_labels);
+  make_dir(kConfidenceDir, any_confidence);
   for (std::size_t i = 0; i < plans.size(); ++i) {
-    write_frame_images(plans[i], folder, options.png_compression);
+    if (options.images_in_place) check_frame_images_in_place(plans[i], folder);
+    else write_frame_images(plans[i], folder, options.png_compression);
     if (options.on_frame_written) options.on_frame_written(i + 1, plans.size());
   }
 

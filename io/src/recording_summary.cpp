@@ -1,5 +1,9 @@
 #include "navaid/io/recording_summary.hpp"
 
+#include <algorithm>
+#include <map>
+#include <set>
+
 #include "navaid/core/geodesy.hpp"
 
 namespace navaid::io {
@@ -53,6 +57,49 @@ std::optional<TrackSummary> gps_track(const std::vector<GpsFix>& fixes, std::siz
   return s;
 }
 
+std::vector<FeatureSummary> feature_summaries(const std::vector<FeatureFrame>& frames) {
+  std::vector<FeatureSummary> out;
+  std::map<std::string, std::size_t> slot;
+  std::vector<std::set<std::uint64_t>> tracks;
+  std::vector<std::size_t> with_depth;
+  for (const auto& f : frames) {
+    const auto [it, inserted] = slot.try_emplace(f.camera, out.size());
+    if (inserted) {
+      out.push_back(FeatureSummary{f.camera});
+      tracks.emplace_back();
+      with_depth.push_back(0);
+    }
+    FeatureSummary& s = out[it->second];
+    ++s.frames;
+    s.empty_frames += f.features.empty();
+    s.observations += f.features.size();
+    for (const auto& o : f.features) {
+      tracks[it->second].insert(o.track_id);
+      with_depth[it->second] += o.depth_m.has_value();
+    }
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    FeatureSummary& s = out[i];
+    s.tracks = tracks[i].size();
+    s.mean_per_frame = static_cast<double>(s.observations) / static_cast<double>(s.frames);
+    if (s.observations > 0) s.depth_fraction = static_cast<double>(with_depth[i]) / static_cast<double>(s.observations);
+  }
+  return out;
+}
+
+std::size_t tracks_without_landmark(const Recording& recording) {
+  if (recording.landmarks.empty()) return 0;
+  std::set<std::uint64_t> missing;
+  for (const auto& f : recording.features)
+    for (const auto& o : f.features) {
+      // Landmarks are sorted by id (the reader and writer enforce it).
+      const auto it = std::lower_bound(recording.landmarks.begin(), recording.landmarks.end(), o.track_id,
+                                       [](const Landmark& l, std::uint64_t id) { return l.id < id; });
+      if (it == recording.landmarks.end() || it->id != o.track_id) missing.insert(o.track_id);
+    }
+  return missing.size();
+}
+
 }  // namespace
 
 RecordingSummary summarize(const Recording& recording) {
@@ -63,6 +110,12 @@ RecordingSummary summarize(const Recording& recording) {
   s.streams = analyze_timing(recording, s.report);
   s.groundtruth = groundtruth_track(recording.groundtruth);
   s.gps_track = gps_track(recording.gps, s.gps_fixes_without_position);
+  s.features = feature_summaries(recording.features);
+  s.landmarks = recording.landmarks.size();
+  s.tracks_without_landmark = tracks_without_landmark(recording);
+  if (s.tracks_without_landmark > 0)
+    s.report.warn("landmarks", std::to_string(s.tracks_without_landmark) +
+                                   " feature track ids have no ground-truth landmark");
   s.origin = recording.origin;
   for (const auto& cam : recording.calibration.cameras)
     s.cameras.push_back(cam.name + " " + std::to_string(cam.width) + "x" + std::to_string(cam.height) + " " +

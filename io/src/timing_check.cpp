@@ -101,22 +101,27 @@ std::vector<StreamStats> analyze_timing(const Recording& recording, DataReport& 
     out.push_back(analyze_stream("imu", times_of(recording.imu), report, options,
                                  calibration.imu ? calibration.imu->rate_hz : 0.0));
 
-  // Cameras in order of first appearance; each camera is its own stream.
-  std::vector<std::string> cameras;
-  std::map<std::string, std::vector<Timestamp>> camera_times;
-  for (const auto& frame : recording.frames) {
-    auto [it, inserted] = camera_times.try_emplace(frame.camera);
-    if (inserted) cameras.push_back(frame.camera);
-    it->second.push_back(frame.t);
-  }
-  for (const auto& name : cameras) {
-    double nominal = 0;
-    for (const auto& c : calibration.cameras)
-      if (c.name == name) nominal = c.rate_hz;
-    StreamStats s = analyze_stream(name, camera_times[name], report, options, nominal);
-    s.is_camera = true;
-    out.push_back(std::move(s));
-  }
+  // Cameras in order of first appearance; each camera is its own stream, and so are its features.
+  const auto per_camera = [&](const auto& frames, const std::string& suffix, bool features) {
+    std::vector<std::string> cameras;
+    std::map<std::string, std::vector<Timestamp>> camera_times;
+    for (const auto& frame : frames) {
+      auto [it, inserted] = camera_times.try_emplace(frame.camera);
+      if (inserted) cameras.push_back(frame.camera);
+      it->second.push_back(frame.t);
+    }
+    for (const auto& name : cameras) {
+      double nominal = 0;
+      for (const auto& c : calibration.cameras)
+        if (c.name == name) nominal = c.rate_hz;
+      StreamStats s = analyze_stream(name + suffix, camera_times[name], report, options, nominal);
+      s.is_camera = !features;
+      s.is_features = features;
+      out.push_back(std::move(s));
+    }
+  };
+  per_camera(recording.frames, "", false);
+  per_camera(recording.features, " features", true);
 
   if (!recording.gps.empty())
     out.push_back(analyze_stream("gps", times_of(recording.gps), report, options, calibration.gps_rate_hz.value_or(0)));

@@ -147,6 +147,62 @@ TEST(Cli, ConvertRefusesToOverwriteAndCollections) {
   EXPECT_NE(collection.output.find("one file at a time"), std::string::npos) << collection.output;
 }
 
+// A version 2 recording holding only feature observations and landmarks, written by hand as an
+// external front end would: 5 frames at 10 Hz, frame 2 without features; frame k != 2 sees tracks
+// k, k+1, k+2, with depth on even ids. Known answers: 12 observations, 2.4 per frame, 6 of 12 with
+// depth, 7 tracks (0..6), track 6 without a landmark.
+TEST(Cli, InfoOnFeatureRecording) {
+  ScratchDir dir("cli-features");
+  const fs::path rec = dir / "features-only";
+  fs::create_directories(rec);
+  navaid::testing::write_text(rec / "recording.yaml",
+                              "format: navaid-recording\nversion: 2\nsensors: [features, landmarks]\n");
+  navaid::testing::write_text(rec / "calibration.yaml", "cameras: []\n");
+  std::string features = "t_ns,camera,track_id,u,v,depth\n";
+  for (int k = 0; k < 5; ++k) {
+    const std::string t = std::to_string(1'000'000'000 + k * 100'000'000);
+    if (k == 2) features += t + ",cam0,,,,\n";
+    for (int id = k; k != 2 && id < k + 3; ++id)
+      features += t + ",cam0," + std::to_string(id) + ",12.5,-0.25," + (id % 2 == 0 ? "3.5" : "") + "\n";
+  }
+  navaid::testing::write_text(rec / "features.csv", features);
+  std::string landmarks = "track_id,x,y,z\n";
+  for (int id = 0; id < 6; ++id) landmarks += std::to_string(id) + ",1,-2,0.5\n";
+  navaid::testing::write_text(rec / "landmarks.csv", landmarks);
+
+  const CliRun run = navaid_cli("info --json " + quote(rec.string()), false);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto s = nlohmann::json::parse(run.output);
+  ASSERT_EQ(s["streams"].size(), 1u);
+  EXPECT_EQ(s["streams"][0]["name"], "cam0 features");
+  EXPECT_EQ(s["streams"][0]["count"], 5);
+  EXPECT_NEAR(s["streams"][0]["rate_hz"].get<double>(), 10.0, 1e-9);
+  ASSERT_EQ(s["features"].size(), 1u);
+  const auto& f = s["features"][0];
+  EXPECT_EQ(f["camera"], "cam0");
+  EXPECT_EQ(f["frames"], 5);
+  EXPECT_EQ(f["empty_frames"], 1);
+  EXPECT_EQ(f["observations"], 12);
+  EXPECT_EQ(f["tracks"], 7);
+  EXPECT_DOUBLE_EQ(f["mean_per_frame"].get<double>(), 2.4);
+  EXPECT_DOUBLE_EQ(f["depth_fraction"].get<double>(), 0.5);
+  EXPECT_EQ(s["landmarks"], 6);
+  EXPECT_EQ(s["tracks_without_landmark"], 1);
+
+  const CliRun text = navaid_cli("info " + quote(rec.string()));
+  ASSERT_EQ(text.status, 0) << text.output;
+  EXPECT_NE(text.output.find("cam0: 5 frames (1 without features), 2.4 per frame, 50.0% with depth, 7 tracks"),
+            std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("6 (1 feature tracks without one)"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("no ground-truth landmark"), std::string::npos) << text.output;
+
+  // The hand-written files are already in the writer's canonical form.
+  ASSERT_EQ(navaid_cli("convert " + quote(rec.string()) + " " + quote((dir / "out").string())).status, 0);
+  EXPECT_EQ(read_text(dir / "out" / "features.csv"), features);
+  EXPECT_EQ(read_text(dir / "out" / "landmarks.csv"), landmarks);
+}
+
 TEST(Cli, BadInputGivesClearErrors) {
   ScratchDir dir("cli-bad");
   const CliRun missing = navaid_cli("info " + quote((dir / "nothing-here").string()));

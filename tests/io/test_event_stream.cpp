@@ -17,7 +17,7 @@ namespace {
 
 using Sensor = SensorEventStream::Sensor;
 
-// (t, kind) of an event, kind = variant index: 0 imu, 1 frame, 2 gps, 3 mag.
+// (t, kind) of an event, kind = variant index: 0 imu, 1 frame, 2 gps, 3 mag, 4 features.
 std::pair<Timestamp, std::size_t> key(const SensorEvent& e) { return {event_time(e), e.index()}; }
 
 std::vector<std::pair<Timestamp, std::size_t>> drain(SensorEventStream& stream) {
@@ -40,7 +40,13 @@ RgbdFrame frame(Timestamp t, std::uint64_t index = 0) {
   return f;
 }
 
-constexpr std::size_t kImu = 0, kFrame = 1, kGps = 2, kMag = 3;
+FeatureFrame features(Timestamp t) {
+  FeatureFrame f;
+  f.t = t;
+  return f;
+}
+
+constexpr std::size_t kImu = 0, kFrame = 1, kGps = 2, kMag = 3, kFeatures = 4;
 
 TEST(EventStreamTest, MergesInTimeOrderWithFixedTieBreak) {
   Recording r;
@@ -48,11 +54,14 @@ TEST(EventStreamTest, MergesInTimeOrderWithFixedTieBreak) {
   r.frames = {frame(10), frame(20)};
   r.gps = {gps(10), gps(25)};
   r.mag = {mag(5), mag(10)};
+  r.features = {features(10), features(22)};
   r.groundtruth.resize(3);  // never emitted
+  r.landmarks.resize(4);    // never emitted
   SensorEventStream stream(r);
-  EXPECT_EQ(stream.total(), 9u);
+  EXPECT_EQ(stream.total(), 11u);
   const std::vector<std::pair<Timestamp, std::size_t>> expected = {
-      {0, kImu}, {5, kMag}, {10, kImu}, {10, kMag}, {10, kGps}, {10, kFrame}, {20, kImu}, {20, kFrame}, {25, kGps}};
+      {0, kImu},      {5, kMag},   {10, kImu},  {10, kMag},      {10, kGps},
+      {10, kFeatures}, {10, kFrame}, {20, kImu}, {20, kFrame}, {22, kFeatures}, {25, kGps}};
   EXPECT_EQ(drain(stream), expected);
   EXPECT_EQ(stream.remaining(), 0u);
   EXPECT_FALSE(stream.next().has_value());
@@ -80,15 +89,19 @@ TEST(EventStreamTest, PeekSkipAndReset) {
   Recording r;
   for (int i = 0; i < 100; ++i) r.imu.push_back(imu(i * 10));
   for (int i = 0; i < 10; ++i) r.frames.push_back(frame(i * 100 + 5));
+  for (int i = 0; i < 10; ++i) r.features.push_back(features(i * 100 + 5));
   SensorEventStream stream(r);
   EXPECT_EQ(stream.peek_time(), Timestamp{0});
   EXPECT_EQ(stream.peek_sensor(), Sensor::kImu);
   stream.skip_until(500);
-  EXPECT_EQ(stream.consumed(), 50u + 5u);
+  EXPECT_EQ(stream.consumed(), 50u + 5u + 5u);
   EXPECT_EQ(stream.peek_time(), Timestamp{500});
   stream.skip_until(505);
-  EXPECT_EQ(stream.peek_sensor(), Sensor::kFrame);  // frame 505 comes before imu 510
+  EXPECT_EQ(stream.peek_sensor(), Sensor::kFeatures);  // features 505, then frame 505, before imu 510
   auto e = stream.next();
+  ASSERT_TRUE(e);
+  EXPECT_EQ(key(*e), std::make_pair(Timestamp{505}, kFeatures));
+  e = stream.next();
   ASSERT_TRUE(e);
   EXPECT_EQ(key(*e), std::make_pair(Timestamp{505}, kFrame));
   stream.skip_until(100);  // backwards: no effect
@@ -96,7 +109,7 @@ TEST(EventStreamTest, PeekSkipAndReset) {
   stream.skip_until(1'000'000);
   EXPECT_EQ(stream.remaining(), 0u);
   stream.reset();
-  EXPECT_EQ(drain(stream).size(), 110u);
+  EXPECT_EQ(drain(stream).size(), 120u);
 }
 
 TEST(EventStreamTest, MatchesStableSortOnRandomData) {
@@ -111,14 +124,19 @@ TEST(EventStreamTest, MatchesStableSortOnRandomData) {
   for (int i = 0; i < 50; ++i) r.gps.push_back(gps(t += 1 + 10 * step(rng)));
   t = 0;
   for (int i = 0; i < 200; ++i) r.mag.push_back(mag(t += 1 + 2 * step(rng)));
+  t = 0;
+  for (int i = 0; i < 100; ++i) r.features.push_back(features(t += 5 * step(rng)));  // two cameras: equal times
 
   // Reference: everything in one vector, stably sorted by (t, documented sensor rank).
-  const auto rank = [](std::size_t kind) { return kind == kImu ? 0 : kind == kMag ? 1 : kind == kGps ? 2 : 3; };
+  const auto rank = [](std::size_t kind) {
+    return kind == kImu ? 0 : kind == kMag ? 1 : kind == kGps ? 2 : kind == kFeatures ? 3 : 4;
+  };
   std::vector<std::pair<Timestamp, std::size_t>> reference;
   for (const auto& s : r.imu) reference.emplace_back(s.t, kImu);
   for (const auto& s : r.frames) reference.emplace_back(s.t, kFrame);
   for (const auto& s : r.gps) reference.emplace_back(s.t, kGps);
   for (const auto& s : r.mag) reference.emplace_back(s.t, kMag);
+  for (const auto& s : r.features) reference.emplace_back(s.t, kFeatures);
   std::stable_sort(reference.begin(), reference.end(), [&](const auto& a, const auto& b) {
     return std::make_pair(a.first, rank(a.second)) < std::make_pair(b.first, rank(b.second));
   });

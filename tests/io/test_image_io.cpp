@@ -202,6 +202,32 @@ TEST_F(ImageIoTest, ConvertDepthUnits) {
   EXPECT_NE(message.find("exceeds the 16-bit range"), std::string::npos) << message;
 }
 
+TEST_F(ImageIoTest, LabelConfidenceQuantizesTo255Levels) {
+  ImageF32 p(4, 1, 1);
+  p.pixels = {0.0f, 0.2f, 0.5f, 1.0f};
+  const ImageU8 units = confidence_to_png_units(p, "conf.png");
+  EXPECT_EQ(units.pixels, (std::vector<std::uint8_t>{0, 51, 128, 255}));  // round(255 p), 127.5 up
+  const std::string file = (dir_ / "conf.png").string();
+  write_png(file, units);
+  const ImageF32 back = read_confidence_png(file);
+  ASSERT_EQ(back.width, 4);
+  for (std::size_t i = 0; i < p.pixels.size(); ++i) EXPECT_NEAR(back.pixels[i], p.pixels[i], 0.5 / 255 + 1e-7);
+  EXPECT_EQ(back.pixels[3], 1.0f);
+
+  p.pixels[1] = -0.01f;
+  EXPECT_NE(error_message<IoError>([&] { confidence_to_png_units(p, "conf.png"); }).find("pixel (1, 0)"),
+            std::string::npos);
+  p.pixels[1] = std::nanf("");
+  EXPECT_NE(error_message<IoError>([&] { confidence_to_png_units(p, "conf.png"); }).find("not a probability"),
+            std::string::npos);
+  EXPECT_NE(error_message<IoError>([&] { read_confidence_png(imwrite(dir_ / "c16.png", cv::Mat(2, 2, CV_16UC1))); })
+                .find("8-bit single-channel"),
+            std::string::npos);
+  EXPECT_NE(error_message<IoError>([&] { read_confidence_png(imwrite(dir_ / "c3.png", cv::Mat(2, 2, CV_8UC3))); })
+                .find("8-bit single-channel"),
+            std::string::npos);
+}
+
 TEST_F(ImageIoTest, WriterErrors) {
   const std::string message =
       error_message<IoError>([&] { write_png((dir_ / "no" / "such" / "dir.png").string(), ImageU8(2, 2)); });

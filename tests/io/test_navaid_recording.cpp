@@ -141,6 +141,14 @@ Recording make_recording(const fs::path& src) {
     f.intensity_path = write_source_png(src / ("c0_rgb" + std::to_string(k) + ".png"), random_mat(CV_8UC3, k, 256));
     f.labels_path = write_source_png(src / ("c0_lab" + std::to_string(k) + ".png"), random_mat(CV_8UC1, 10 + k, 20));
     if (k == 0) {
+      f.confidence_path = write_source_png(src / "c0_conf0.png", random_mat(CV_8UC1, 40, 256));
+    } else if (k == 2) {  // probabilities only in memory, as the simulator makes them
+      f.label_confidence = ImageF32(8, 6, 1, 0.5f);
+      f.label_confidence->at(1, 2) = 0.0f;
+      f.label_confidence->at(3, 4) = 1.0f;
+      f.label_confidence->at(5, 0) = 0.9137f;  // 232.99 / 255: rounds to 233
+    }
+    if (k == 0) {
       cv::Mat d = random_mat(CV_16UC1, 20, 8000);
       d.at<std::uint16_t>(0, 0) = 0;
       f.depth_path = write_source_png(src / "c0_depth0.png", d);
@@ -164,6 +172,27 @@ Recording make_recording(const fs::path& src) {
     }
     r.frames.push_back(g);
   }
+
+  // Feature observations: cam0 every 33 ms with some depths, cam1 at the same instants (shared
+  // time stamps), one cam1 frame without features; ids epoch-sized to exercise 64 bits.
+  std::uniform_real_distribution<double> pixel(0, 640);
+  for (int k = 0; k < 4; ++k) {
+    for (const char* camera : {"cam0", "cam1"}) {
+      FeatureFrame ff;
+      ff.t = kT0 + k * 33'333'333;
+      ff.camera = camera;
+      const bool empty = std::string(camera) == "cam1" && k == 2;
+      for (std::uint64_t id = 5 + k; !empty && id < 40; id += 3) {
+        FeatureObservation o;
+        o.track_id = id * 1'000'000'007ull;
+        o.uv = Eigen::Vector2d(pixel(rng), pixel(rng) * 0.75);
+        if (id % 2 == 0) o.depth_m = 0.3 + 7 * std::abs(normal(rng));
+        ff.features.push_back(o);
+      }
+      r.features.push_back(ff);
+    }
+  }
+  for (std::uint64_t id = 5; id < 40; ++id) r.landmarks.push_back(Landmark{id * 1'000'000'007ull, vec(10)});
   return r;
 }
 
@@ -174,6 +203,8 @@ std::vector<std::string> files_under(const fs::path& root) {
   std::sort(files.begin(), files.end());
   return files;
 }
+
+bool has_confidence(const RgbdFrame& f) { return !f.confidence_path.empty() || f.label_confidence.has_value(); }
 
 bool same_number(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
@@ -257,6 +288,25 @@ void expect_same_samples(const Recording& a, const Recording& b) {
     EXPECT_EQ(a.frames[i].t, b.frames[i].t);
     EXPECT_EQ(a.frames[i].camera, b.frames[i].camera);
     EXPECT_EQ(a.frames[i].index, b.frames[i].index);
+    EXPECT_EQ(has_confidence(a.frames[i]), has_confidence(b.frames[i])) << "frame " << i;
+  }
+  ASSERT_EQ(a.features.size(), b.features.size());
+  for (std::size_t i = 0; i < a.features.size(); ++i) {
+    const FeatureFrame& x = a.features[i];
+    const FeatureFrame& y = b.features[i];
+    EXPECT_EQ(x.t, y.t);
+    EXPECT_EQ(x.camera, y.camera);
+    ASSERT_EQ(x.features.size(), y.features.size()) << "feature frame " << i;
+    for (std::size_t k = 0; k < x.features.size(); ++k) {
+      EXPECT_EQ(x.features[k].track_id, y.features[k].track_id);
+      EXPECT_EQ(x.features[k].uv, y.features[k].uv);
+      EXPECT_EQ(x.features[k].depth_m, y.features[k].depth_m);
+    }
+  }
+  ASSERT_EQ(a.landmarks.size(), b.landmarks.size());
+  for (std::size_t i = 0; i < a.landmarks.size(); ++i) {
+    EXPECT_EQ(a.landmarks[i].id, b.landmarks[i].id);
+    EXPECT_EQ(a.landmarks[i].p_W, b.landmarks[i].p_W);
   }
   ASSERT_EQ(a.origin.has_value(), b.origin.has_value());
   EXPECT_EQ(a.origin->latitude_deg, b.origin->latitude_deg);
@@ -366,16 +416,29 @@ TEST_F(NavaidRecordingTest, RoundTripKeepsEveryValue) {
   ASSERT_TRUE(f0.labels.has_value());
   EXPECT_EQ(f0.labels->at(7, 5), cv::imread(original_.frames[0].labels_path, cv::IMREAD_UNCHANGED).at<std::uint8_t>(5, 7));
 
+  // Label confidence from an 8-bit source PNG: value / 255.
+  ASSERT_TRUE(f0.label_confidence.has_value());
+  const cv::Mat conf = cv::imread(original_.frames[0].confidence_path, cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(f0.label_confidence->at(6, 1), static_cast<float>(conf.at<std::uint8_t>(1, 6) / 255.0));
+
   RgbdFrame f1 = read.frames[2];  // TUM depth converted to millimetres
   load_frame_images(f1);
   const cv::Mat tum = cv::imread(original_.frames[2].depth_path, cv::IMREAD_UNCHANGED);
   const double tum_m = tum.at<std::uint16_t>(1, 1) / 5000.0;
   EXPECT_NEAR(f1.depth.at(1, 1), tum_m, 0.0005 + 1e-6);
 
-  RgbdFrame f2 = read.frames[4];  // depth that existed only in memory
+  EXPECT_TRUE(read.frames[2].confidence_path.empty());
+  EXPECT_FALSE(f1.label_confidence.has_value());
+
+  RgbdFrame f2 = read.frames[4];  // depth and label confidence that existed only in memory
   load_frame_images(f2);
   EXPECT_NEAR(f2.depth.at(0, 0), 1.234f, 1e-6);
   EXPECT_EQ(f2.depth.at(2, 3), 0.0f);
+  ASSERT_TRUE(f2.label_confidence.has_value());
+  EXPECT_EQ(f2.label_confidence->at(0, 0), static_cast<float>(128 / 255.0));  // round(127.5)
+  EXPECT_EQ(f2.label_confidence->at(1, 2), 0.0f);
+  EXPECT_EQ(f2.label_confidence->at(3, 4), 1.0f);
+  EXPECT_EQ(f2.label_confidence->at(5, 0), static_cast<float>(233 / 255.0));
 
   RgbdFrame g1 = read.frames[3];  // grey intensity that existed only in memory
   load_frame_images(g1);
@@ -390,7 +453,8 @@ TEST_F(NavaidRecordingTest, WriteReadWriteIsByteIdentical) {
   write_navaid_recording(first, again);
   const auto files = files_under(good());
   ASSERT_EQ(files, files_under(again));
-  EXPECT_GE(files.size(), 7u + 6u + 3u + 3u);
+  EXPECT_GE(files.size(), 9u + 6u + 3u + 3u + 2u);
+  EXPECT_TRUE(fs::exists(good() / "confidence"));
   for (const auto& f : files) EXPECT_EQ(read_text(good() / f), read_text(again / f)) << f;
 
   // And the third generation reads back the same values as the second.
@@ -406,13 +470,22 @@ TEST_F(NavaidRecordingTest, FormatFilesLookAsDocumented) {
   const std::string gps = read_text(good() / "gps.csv");
   EXPECT_EQ(gps.rfind("t_ns,lat,lon,alt,", 0), 0u);
   const std::string rec = read_text(good() / "recording.yaml");
-  EXPECT_NE(rec.find("format: navaid-recording\nversion: 1\n"), std::string::npos);
-  EXPECT_NE(rec.find("sensors: [imu, frames, gps, mag, groundtruth]"), std::string::npos);
+  EXPECT_NE(rec.find("format: navaid-recording\nversion: 2\n"), std::string::npos);
+  EXPECT_NE(rec.find("sensors: [imu, frames, gps, mag, groundtruth, features, landmarks]"), std::string::npos);
   EXPECT_NE(rec.find("latitude_deg: 46.519653"), std::string::npos);
   const std::string frames = read_text(good() / "frames.csv");
+  EXPECT_EQ(frames.substr(0, frames.find('\n')), "t_ns,camera,index,intensity,depth,labels,confidence");
   EXPECT_NE(frames.find("1403715273262142976,cam0,0,rgb/cam0_1403715273262142976.png,"
-                        "depth/cam0_1403715273262142976.png,labels/cam0_1403715273262142976.png\n"),
+                        "depth/cam0_1403715273262142976.png,labels/cam0_1403715273262142976.png,"
+                        "confidence/cam0_1403715273262142976.png\n"),
             std::string::npos);
+  EXPECT_NE(frames.find("1403715273262142976,cam1,100,rgb/cam1_1403715273262142976.png,,,\n"), std::string::npos);
+  const std::string features = read_text(good() / "features.csv");
+  EXPECT_EQ(features.substr(0, features.find('\n')), "t_ns,camera,track_id,u,v,depth");
+  EXPECT_NE(features.find("\n1403715273262142976,cam0,5000000035,"), std::string::npos);
+  EXPECT_NE(features.find("\n1403715273328809642,cam1,,,,\n"), std::string::npos);  // frame without features
+  const std::string landmarks = read_text(good() / "landmarks.csv");
+  EXPECT_EQ(landmarks.rfind("track_id,x,y,z\n5000000035,", 0), 0u);
   EXPECT_TRUE(is_navaid_recording(good()));
   EXPECT_FALSE(is_navaid_recording(dir_ / "src"));
 }
@@ -501,13 +574,13 @@ TEST_F(NavaidRecordingTest, MissingFrameImageNamesFramesCsvLine) {
 
 TEST_F(NavaidRecordingTest, FramePathEscapingTheFolder) {
   const fs::path bad = copy("escape");
-  replace_line(bad / "frames.csv", 2, "1403715273262142976,cam0,0,../good/rgb/cam0_1403715273262142976.png,,");
+  replace_line(bad / "frames.csv", 2, "1403715273262142976,cam0,0,../good/rgb/cam0_1403715273262142976.png,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "frames.csv", 2, "no '..'");
 }
 
 TEST_F(NavaidRecordingTest, FramesOutOfOrder) {
   const fs::path bad = copy("frames-order");
-  replace_line(bad / "frames.csv", 4, "1403715273262142975,cam0,1,,,");
+  replace_line(bad / "frames.csv", 4, "1403715273262142975,cam0,1,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "frames.csv", 4, "time order");
 }
 
@@ -519,19 +592,200 @@ TEST_F(NavaidRecordingTest, ListedSensorWithoutFile) {
 
 TEST_F(NavaidRecordingTest, UnlistedFileIsIgnoredWithAWarning) {
   const fs::path bad = copy("unlisted");
-  replace_text(bad / "recording.yaml", "sensors: [imu, frames, gps, mag, groundtruth]", "sensors: [imu, frames]");
+  replace_text(bad / "recording.yaml", "sensors: [imu, frames, gps, mag, groundtruth, features, landmarks]",
+               "sensors: [imu, frames]");
   const Recording r = read_navaid_recording(bad);
   EXPECT_TRUE(r.gps.empty());
-  EXPECT_EQ(r.report.total(), 3u);
+  EXPECT_TRUE(r.features.empty());
+  EXPECT_EQ(r.report.total(), 5u);
+}
+
+// ---- Feature observations, landmarks and label confidence (version 2) --------------------------
+
+// features.csv of the good recording: line 2..13 frame (kT0, cam0) with ids 5, 8, ... 38 (times
+// 1000000007), 14..25 (kT0, cam1), 26.. (kT0 + 33 ms, cam0).
+TEST_F(NavaidRecordingTest, FeaturesWrongHeader) {
+  const fs::path bad = copy("f-header");
+  replace_line(bad / "features.csv", 1, "t_ns,camera,track_id,u,v,depth_mm");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 1, "header must be 't_ns,camera,track_id");
+}
+
+TEST_F(NavaidRecordingTest, FeaturesDuplicateTrackIdInAFrame) {
+  const fs::path bad = copy("f-dup");
+  replace_line(bad / "features.csv", 3, "1403715273262142976,cam0,5000000035,10,20,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 3,
+                  "column 'track_id': 5000000035 after 5000000035 in the same frame");
+}
+
+TEST_F(NavaidRecordingTest, FeaturesTimeOrder) {
+  const fs::path bad = copy("f-time");
+  replace_line(bad / "features.csv", 26, "1403715273262142975,cam0,6000000042,10,20,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 26, "rows must be in time order");
+  // A second frame of the same camera at the same time (rows of a frame split apart).
+  replace_line(bad / "features.csv", 26, "1403715273262142976,cam0,6000000042,10,20,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 26, "camera 'cam0' has a second frame");
+}
+
+TEST_F(NavaidRecordingTest, FeaturesBadNumbers) {
+  const fs::path bad = copy("f-numbers");
+  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,far");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'depth': 'far' is not a number");
+  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,nan,20,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'u': 'nan' is not a finite number");
+  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,-1.5");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'depth': -1.5 must be positive");
+  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,0");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'depth': 0 must be positive");
+  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,-5,10,20,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'track_id': -5 is outside");
+  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'v' is empty");
+}
+
+TEST_F(NavaidRecordingTest, FeaturesEmptyFrameMarkerMustBeAlone) {
+  const fs::path bad = copy("f-marker");
+  replace_line(bad / "features.csv", 3, "1403715273262142976,cam0,,,,");
+  expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 3, "must be the only row of its frame");
+}
+
+TEST_F(NavaidRecordingTest, LandmarksMustBeSortedAndWellFormed) {
+  const fs::path bad = copy("l-order");
+  replace_line(bad / "landmarks.csv", 3, "5000000035,1,2,3");
+  expect_io_error([&] { read_navaid_recording(bad); }, "landmarks.csv", 3, "must be strictly increasing");
+  replace_line(bad / "landmarks.csv", 3, "6000000042,1,inf,3");
+  expect_io_error([&] { read_navaid_recording(bad); }, "landmarks.csv", 3, "column 'y'");
+  replace_line(bad / "landmarks.csv", 1, "t_ns,track_id,x,y,z");
+  expect_io_error([&] { read_navaid_recording(bad); }, "landmarks.csv", 1, "header must be 'track_id,x,y,z'");
+}
+
+TEST_F(NavaidRecordingTest, ConfidenceNeedsLabels) {
+  const fs::path bad = copy("c-labels");
+  replace_line(bad / "frames.csv", 2,
+               "1403715273262142976,cam0,0,,,,confidence/cam0_1403715273262142976.png");
+  expect_io_error([&] { read_navaid_recording(bad); }, "frames.csv", 2, "a label confidence needs labels");
+}
+
+TEST_F(NavaidRecordingTest, ConfidencePngMustBe8BitAndLabelSized) {
+  const fs::path bad = copy("c-png");
+  const fs::path png = bad / "confidence" / "cam0_1403715273262142976.png";
+  ASSERT_TRUE(cv::imwrite(png.string(), cv::Mat(6, 8, CV_16UC1, cv::Scalar(40000))));
+  Recording r = read_navaid_recording(bad);  // pixels are read lazily
+  expect_io_error([&] { load_frame_images(r.frames[0]); }, png.filename().string(), 0,
+                  "must be an 8-bit single-channel PNG");
+  ASSERT_TRUE(cv::imwrite(png.string(), cv::Mat(5, 8, CV_8UC1, cv::Scalar(200))));
+  expect_io_error([&] { load_frame_images(r.frames[0]); }, png.filename().string(), 0,
+                  "label confidence is 8x5 but the labels are 8x6");
+  // The writer checks the same when it re-encodes from such a source.
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "c-png-out"); }, png.filename().string(), 0,
+                  "label confidence is 8x5 but the labels are 8x6");
+}
+
+TEST_F(NavaidRecordingTest, WriterRefusesBadFeaturesLandmarksAndConfidence) {
+  Recording r;
+  FeatureFrame f;
+  f.features = {FeatureObservation{4, Eigen::Vector2d(1, 2), 1.5}, FeatureObservation{4, Eigen::Vector2d(3, 4), {}}};
+  r.features = {f};
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf"); }, "features.csv", 0,
+                  "feature frame 0: track id 4 after 4");
+  r.features[0].features[1].track_id = 7;
+  r.features[0].features[0].depth_m = -1.0;
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf"); }, "features.csv", 0, "depth -1 is not a positive");
+  r.features[0].features[0].depth_m = 1.0;
+  r.features[0].features[1].uv.y() = std::nan("");
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf"); }, "features.csv", 0, "column 'v' is not finite");
+  r.features[0].features[1].uv.y() = 3;
+  r.features.push_back(r.features[0]);  // same camera, same time
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf"); }, "features.csv", 0,
+                  "feature frame 1: timestamp");
+  r.features.pop_back();
+
+  r.landmarks = {Landmark{3, Vec3::Zero()}, Landmark{2, Vec3::Ones()}};
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf"); }, "landmarks.csv", 0, "landmark 1: track id 2 after 3");
+  r.landmarks[1].id = 9;
+
+  RgbdFrame frame;
+  frame.labels = ImageU8(4, 3, 1, 2);
+  frame.label_confidence = ImageF32(4, 3, 1, 0.5f);
+  frame.label_confidence->at(2, 1) = 1.25f;
+  r.frames = {frame};
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf"); }, "cam0_0.png", 0,
+                  "pixel (2, 1): label confidence 1.25");
+  r.frames[0].labels.reset();
+  NavaidWriteOptions overwrite;
+  overwrite.overwrite = true;
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "wf", overwrite); }, "frames.csv", 0,
+                  "has a label confidence but no labels");
+  EXPECT_FALSE(fs::exists(dir_ / "wf" / "features.csv"));
+}
+
+TEST_F(NavaidRecordingTest, FeaturesOfAnUncalibratedCameraAreReadWithAWarning) {
+  Recording r;
+  FeatureFrame f;
+  f.camera = "cam7";
+  f.t = 100;
+  r.features = {f};  // also: a frame without features round trips
+  write_navaid_recording(r, dir_ / "uncal");
+  const Recording read = read_navaid_recording(dir_ / "uncal");
+  ASSERT_EQ(read.features.size(), 1u);
+  EXPECT_EQ(read.features[0].camera, "cam7");
+  EXPECT_EQ(read.features[0].t, 100);
+  EXPECT_TRUE(read.features[0].features.empty());
+  EXPECT_EQ(read.report.total(), 1u);
+}
+
+// A version 1 folder (no confidence column, no features or landmarks) is still read; writing it
+// again gives exactly the version 2 folder of the same data.
+TEST_F(NavaidRecordingTest, Version1FolderReadsAndBecomesVersion2) {
+  Recording r = original_;
+  r.features.clear();
+  r.landmarks.clear();
+  for (auto& f : r.frames) {
+    f.confidence_path.clear();
+    f.label_confidence.reset();
+  }
+  const fs::path v2 = dir_ / "v2";
+  write_navaid_recording(r, v2);
+  const fs::path v1 = dir_ / "v1";
+  fs::copy(v2, v1, fs::copy_options::recursive);
+  replace_text(v1 / "recording.yaml", "version: 2", "version: 1");
+  replace_text(v1 / "calibration.yaml", "format version 2", "format version 1");
+  std::istringstream in(read_text(v1 / "frames.csv"));
+  std::string v1_frames, line;
+  while (std::getline(in, line)) {
+    ASSERT_TRUE(line.size() > 1 && (line.back() == ',' || line.rfind("t_ns", 0) == 0)) << line;
+    v1_frames += line.substr(0, line.rfind(',')) + "\n";
+  }
+  write_text(v1 / "frames.csv", v1_frames);
+  EXPECT_EQ(read_text(v1 / "frames.csv").substr(0, 41), "t_ns,camera,index,intensity,depth,labels\n");
+
+  const Recording read = read_navaid_recording(v1);
+  EXPECT_EQ(read.report.total(), 0u);
+  expect_same_calibration(r.calibration, read.calibration);
+  expect_same_samples(r, read);
+  const fs::path again = dir_ / "v1-again";
+  write_navaid_recording(read, again);
+  const auto files = files_under(v2);
+  ASSERT_EQ(files, files_under(again));
+  for (const auto& f : files) EXPECT_EQ(read_text(v2 / f), read_text(again / f)) << f;
+
+  // Version 1 knows neither the confidence column nor the new sensors.
+  write_text(v1 / "frames.csv", read_text(v2 / "frames.csv"));
+  expect_io_error([&] { read_navaid_recording(v1); }, "frames.csv", 1, "header must be");
+  replace_text(v1 / "recording.yaml", "groundtruth]", "groundtruth, landmarks]");
+  expect_config_error([&] { read_navaid_recording(v1); }, "recording.yaml", "sensors[5]",
+                      "sensor 'landmarks' needs format version 2");
 }
 
 // ---- YAML corruption: every case names the file and the key -----------------------------------
 
 TEST_F(NavaidRecordingTest, UnknownVersion) {
   const fs::path bad = copy("version");
-  replace_text(bad / "recording.yaml", "version: 1", "version: 2\nkey_of_version_2: true");
+  replace_text(bad / "recording.yaml", "version: 2", "version: 3\nkey_of_version_3: true");
   expect_config_error([&] { read_navaid_recording(bad); }, "recording.yaml", "version",
-                      "unsupported navaid recording version 2; this build reads version 1");
+                      "unsupported navaid recording version 3; this build reads versions 1 to 2");
+  replace_text(bad / "recording.yaml", "version: 3", "version: 0");
+  expect_config_error([&] { read_navaid_recording(bad); }, "recording.yaml", "version",
+                      "unsupported navaid recording version 0");
 }
 
 TEST_F(NavaidRecordingTest, WrongFormatName) {
@@ -638,7 +892,7 @@ TEST_F(NavaidRecordingTest, WriterRefusesClassProbabilitiesUnlessDropped) {
   f.intensity = ImageU8(4, 3, 1, 9);
   f.class_probabilities = ImageF32(4, 3, 5, 0.2f);
   r.frames.push_back(f);
-  expect_io_error([&] { write_navaid_recording(r, dir_ / "p1"); }, "frames.csv", 0, "class probabilities");
+  expect_io_error([&] { write_navaid_recording(r, dir_ / "p1"); }, "frames.csv", 0, "per-class probabilities");
   NavaidWriteOptions drop;
   drop.drop_class_probabilities = true;
   write_navaid_recording(r, dir_ / "p2", drop);

@@ -120,6 +120,46 @@ TEST(TimingCheckTest, NominalRateMismatchAndStreamOrder) {
   EXPECT_EQ(report.total(), 1u);
 }
 
+TEST(TimingCheckTest, FeatureFramesAreTimedPerCameraAfterTheImages) {
+  Recording r;
+  CameraCalibration cam1;
+  cam1.name = "cam1";
+  cam1.rate_hz = 20;
+  r.calibration.cameras = {cam1};
+  RgbdFrame image;
+  image.camera = "cam1";
+  r.frames = {image};
+  // cam1 features at 20 Hz with two frames missing after 0.5 s, cam0 features at 10 Hz.
+  for (const Timestamp t : regular(0, 50 * kMs, 21)) {
+    FeatureFrame f;
+    f.t = t < 550 * kMs ? t : t + 100 * kMs;
+    f.camera = "cam1";
+    r.features.push_back(f);
+    if (t % (100 * kMs) == 0) {
+      f.t = t;
+      f.camera = "cam0";
+      r.features.push_back(f);
+    }
+  }
+  DataReport report;
+  const auto stats = analyze_timing(r, report);
+  ASSERT_EQ(stats.size(), 3u);
+  EXPECT_EQ(stats[0].name, "cam1");
+  EXPECT_TRUE(stats[0].is_camera);
+  EXPECT_EQ(stats[1].name, "cam1 features");
+  EXPECT_TRUE(stats[1].is_features);
+  EXPECT_FALSE(stats[1].is_camera);
+  EXPECT_EQ(stats[1].count, 21u);
+  EXPECT_DOUBLE_EQ(stats[1].rate_hz, 20.0);
+  EXPECT_EQ(stats[1].nominal_rate_hz, 20.0);
+  EXPECT_EQ(stats[1].gaps, 1u);
+  EXPECT_EQ(stats[1].dropped, 2u);
+  EXPECT_EQ(stats[2].name, "cam0 features");
+  EXPECT_EQ(stats[2].count, 11u);
+  EXPECT_DOUBLE_EQ(stats[2].rate_hz, 10.0);
+  EXPECT_TRUE(report_mentions(report, "cam1 features", "gap of 0.15 s"));
+}
+
 TEST(TimingCheckTest, MedianOfEvenCount) {
   DataReport report;
   // intervals 10, 10, 20, 20 ms -> median 15 ms

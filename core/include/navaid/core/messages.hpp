@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "navaid/core/geometry.hpp"
 #include "navaid/core/image.hpp"
@@ -31,7 +32,11 @@ struct RgbdFrame {
   double depth_png_scale_m = 0.001;  ///< metres per 16-bit depth PNG unit (navaid: mm; TUM: 1/5000)
   ImageU8 intensity;              ///< grey levels (1 channel) or RGB (3 channels)
   ImageF32 depth;                 ///< metric depth along the optical axis [m]; 0 = invalid
+  std::string confidence_path;    ///< 8-bit PNG, round(255 p) per pixel (may be empty)
   std::optional<ImageU8> labels;  ///< semantic class id per pixel
+  /// Probability in [0, 1] that the segmentation gives the label of each pixel (same size as
+  /// labels); with the producer's confusion model this gives the posterior over classes.
+  std::optional<ImageF32> label_confidence;
   /// Per-pixel class probabilities, one channel per class of the label set.
   std::optional<ImageF32> class_probabilities;
 
@@ -72,7 +77,28 @@ struct GroundTruthState {
   std::optional<Vec3> b_a;   ///< accelerometer bias [m/s^2]
 };
 
-using SensorEvent = std::variant<ImuSample, RgbdFrame, GpsFix, MagSample>;
+/// One feature seen in one frame: a landmark/track id and where it appears.
+struct FeatureObservation {
+  std::uint64_t track_id = 0;
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();  ///< distorted pixel coordinates [px], as a detected corner
+  std::optional<double> depth_m;                 ///< depth along the optical axis [m], when measured
+};
+
+/// The features of one camera frame (feature-level simulation or an external front end), with
+/// track ids strictly increasing.
+struct FeatureFrame {
+  Timestamp t = 0;
+  std::string camera = "cam0";
+  std::vector<FeatureObservation> features;
+};
+
+/// A ground-truth landmark (evaluation only): the point that feature track `id` observes.
+struct Landmark {
+  std::uint64_t id = 0;
+  Vec3 p_W = Vec3::Zero();  ///< position in the world frame W [m]
+};
+
+using SensorEvent = std::variant<ImuSample, RgbdFrame, GpsFix, MagSample, FeatureFrame>;
 
 inline Timestamp event_time(const SensorEvent& e) {
   return std::visit([](const auto& m) { return m.t; }, e);

@@ -3,10 +3,12 @@
 // (a binary heap holding one cursor per sensor), O(log k) per event, no copy of the recording.
 //
 // Order: by timestamp; equal timestamps are broken by the fixed sensor order
-//   ImuSample < MagSample < GpsFix < RgbdFrame
+//   ImuSample < MagSample < GpsFix < FeatureFrame < RgbdFrame
 // (inertial data first, so that a consumer has propagated up to t before it sees the frame taken
-// at t), and within one sensor by position in its vector. Replay is therefore deterministic.
-// Ground truth is not a sensor event and is never emitted.
+// at t; features before the images of the same instant, so a consumer that tracks its own
+// features from the images sees any external ones first), and within one sensor by position in
+// its vector. Replay is therefore deterministic. Ground truth and landmarks are not sensor events
+// and are never emitted.
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -24,7 +26,7 @@ struct EventStreamOptions {
 class SensorEventStream {
  public:
   /// Tie-break rank of each sensor (lower first at equal timestamps).
-  enum class Sensor : int { kImu = 0, kMag = 1, kGps = 2, kFrame = 3 };
+  enum class Sensor : int { kImu = 0, kMag = 1, kGps = 2, kFeatures = 3, kFrame = 4 };
 
   /// The recording must outlive the stream and stay unchanged while it is used. Throws
   /// std::invalid_argument when a sensor vector is not in non-decreasing time order.
@@ -47,7 +49,7 @@ class SensorEventStream {
   std::size_t remaining() const { return total_ - consumed_; }
 
  private:
-  static constexpr std::size_t kSensors = 4;
+  static constexpr std::size_t kSensors = 5;
   struct Head {
     Timestamp t;
     int sensor;

@@ -13,9 +13,10 @@ namespace navaid::io {
 /// PNG look exactly like that (a 3 m wall becomes 3 mm).
 constexpr double kMinPlausibleMaxDepthM = 0.05;
 
-/// Fills frame.intensity, frame.depth and frame.labels from the non-empty *_path members
-/// (members whose path is empty are left untouched). Depth becomes metres: raw value times
-/// frame.depth_png_scale_m, with 0 kept as 0 (invalid).
+/// Fills frame.intensity, frame.depth, frame.labels and frame.label_confidence from the non-empty
+/// *_path members (members whose path is empty are left untouched). Depth becomes metres: raw value
+/// times frame.depth_png_scale_m, with 0 kept as 0 (invalid); confidence becomes value / 255. A
+/// confidence image whose size differs from the labels' is an IoError naming the confidence file.
 void load_frame_images(RgbdFrame& frame);
 /// Frees the pixel buffers (paths are kept), e.g. after a frame has been consumed.
 void release_frame_images(RgbdFrame& frame);
@@ -25,6 +26,14 @@ void release_frame_images(RgbdFrame& frame);
 ImageU8 read_intensity_image(const std::string& path);
 /// 8-bit single-channel PNG of class ids.
 ImageU8 read_label_image(const std::string& path);
+/// 8-bit single-channel label-confidence PNG, raw units (round(255 p)).
+ImageU8 read_confidence_png_raw(const std::string& path);
+/// 8-bit single-channel label-confidence PNG as probabilities (value / 255).
+ImageF32 read_confidence_png(const std::string& path);
+/// Probabilities to confidence PNG units, round(255 p). Throws IoError naming `path` (the file
+/// being written) and the pixel for a value outside [0, 1] or NaN, and for more than one channel.
+ImageU8 confidence_to_png_units(const ImageF32& probability, const std::string& path);
+
 /// 16-bit single-channel depth PNG, raw units; checks the units (see check_depth_units).
 ImageU16 read_depth_png_raw(const std::string& path, double scale_m);
 /// 16-bit single-channel depth PNG in metres (raw * scale_m; 0 = invalid).

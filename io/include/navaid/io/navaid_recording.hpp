@@ -1,7 +1,7 @@
 #pragma once
 // The navaid recording format: a folder holding recording.yaml, calibration.yaml, one CSV per
-// sensor stream (imu, gps, mag, groundtruth, frames) and the frame images in rgb/, depth/ and
-// labels/. The format is a public contract, specified in docs/recording-format.md.
+// stream (imu, gps, mag, groundtruth, frames, features, landmarks) and the frame images in rgb/,
+// depth/, labels/ and confidence/. The format is a public contract, specified in docs/recording-format.md.
 //
 // Writing then reading gives back the same values (numbers are printed in shortest round-trip
 // form), and writing what was read gives byte-identical files.
@@ -14,7 +14,9 @@
 namespace navaid::io {
 
 constexpr const char* kNavaidFormatName = "navaid-recording";
-constexpr int kNavaidFormatVersion = 1;
+/// The version the writer writes; readers accept kNavaidOldestVersion to kNavaidFormatVersion.
+constexpr int kNavaidFormatVersion = 2;
+constexpr int kNavaidOldestVersion = 1;
 /// Depth PNGs of the navaid format hold millimetres.
 constexpr double kNavaidDepthScaleM = 0.001;
 
@@ -24,9 +26,14 @@ struct NavaidWriteOptions {
   bool overwrite = false;
   /// zlib level (0-9) of the PNGs written.
   int png_compression = 3;
-  /// Class probabilities are not part of format version 1; frames carrying them are an error
-  /// unless this is set, in which case they are left out.
+  /// Per-class probabilities are not part of the format (label_confidence is); frames carrying
+  /// them are an error unless this is set, in which case they are left out.
   bool drop_class_probabilities = false;
+  /// The frame images already lie in the destination folder under the names this writer gives
+  /// them (rgb/<camera>_<t_ns>.png, ...), written there by the producer (the simulator writes
+  /// each frame as it makes it instead of holding a whole recording in memory). They are checked
+  /// to exist and kept as they are, not re-encoded; an image path elsewhere is an error.
+  bool images_in_place = false;
   /// Called after each frame's images are written (done, total), for progress display.
   std::function<void(std::size_t, std::size_t)> on_frame_written;
 };
@@ -34,8 +41,8 @@ struct NavaidWriteOptions {
 /// True when `folder` holds a recording.yaml (cheap format detection, no validation).
 bool is_navaid_recording(const std::filesystem::path& folder);
 
-/// Reads and validates a navaid recording. Frame image paths are set (joined to `folder`) and
-/// checked to exist; pixels are not loaded. Throws IoError naming file and line for bad CSV data
+/// Reads and validates a navaid recording of any supported version. Frame image paths are set
+/// (joined to `folder`) and checked to exist; pixels are not loaded. Throws IoError naming file and line for bad CSV data
 /// and missing images, ConfigError naming file and key for bad YAML values.
 Recording read_navaid_recording(const std::filesystem::path& folder);
 

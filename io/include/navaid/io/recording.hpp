@@ -34,9 +34,14 @@ struct Recording {
   std::vector<GpsFix> gps;
   std::vector<MagSample> mag;
   std::vector<GroundTruthState> groundtruth;
+  std::vector<FeatureFrame> features;  ///< feature observations per camera frame
+  std::vector<Landmark> landmarks;     ///< ground-truth landmarks, ids strictly increasing (not replayed)
   DataReport report;
 
-  bool empty() const { return imu.empty() && frames.empty() && gps.empty() && mag.empty() && groundtruth.empty(); }
+  bool empty() const {
+    return imu.empty() && frames.empty() && gps.empty() && mag.empty() && groundtruth.empty() && features.empty() &&
+           landmarks.empty();
+  }
 };
 
 }  // namespace navaid::io

@@ -17,6 +17,17 @@ struct TrackSummary {
   double max_excursion_m = 0; ///< largest distance from the first point
 };
 
+/// Feature observations of one camera.
+struct FeatureSummary {
+  std::string camera;
+  std::size_t frames = 0;
+  std::size_t empty_frames = 0;    ///< frames without any feature
+  std::size_t observations = 0;
+  std::size_t tracks = 0;          ///< distinct track ids
+  double mean_per_frame = 0;       ///< observations / frames
+  double depth_fraction = 0;       ///< observations with depth / observations (0 without observations)
+};
+
 struct RecordingSummary {
   std::string path;
   std::string format;
@@ -24,6 +35,11 @@ struct RecordingSummary {
   std::optional<TrackSummary> groundtruth;  ///< Euclidean, in the ground truth's frame
   std::optional<TrackSummary> gps_track;    ///< geodesic on WGS84, over fixes with a 2D/3D fix
   std::size_t gps_fixes_without_position = 0;  ///< fixes whose mode is "no fix"
+  std::vector<FeatureSummary> features;  ///< per camera, in order of first appearance
+  std::size_t landmarks = 0;
+  /// Distinct feature track ids (all cameras) without a ground-truth landmark; only counted when
+  /// the recording has landmarks.
+  std::size_t tracks_without_landmark = 0;
   std::optional<GeodeticOrigin> origin;
   std::vector<std::string> cameras;  ///< "cam0 640x480 radtan"
   bool has_imu_calibration = false;

@@ -31,8 +31,9 @@ struct TimingOptions {
 };
 
 struct StreamStats {
-  std::string name;          ///< "imu", a camera name ("cam0"), "gps", "mag", "groundtruth"
+  std::string name;          ///< "imu", a camera ("cam0"), its features ("cam0 features"), "gps", ...
   bool is_camera = false;
+  bool is_features = false;  ///< feature frames of one camera
   std::size_t count = 0;
   Timestamp first = 0;       ///< first and last timestamp (0 when count == 0)
   Timestamp last = 0;
@@ -53,7 +54,8 @@ StreamStats analyze_stream(const std::string& name, const std::vector<Timestamp>
                            const TimingOptions& options = {}, double nominal_rate_hz = 0);
 
 /// Stats of every non-empty stream of the recording, in the order imu, cameras (by first
-/// appearance in `frames`), gps, mag, groundtruth.
+/// appearance in `frames`), feature frames per camera (by first appearance in `features`, named
+/// "<camera> features"), gps, mag, groundtruth.
 std::vector<StreamStats> analyze_timing(const Recording& recording, DataReport& report,
                                         const TimingOptions& options = {});
 
