@@ -7,5 +7,6 @@ namespace navaid::cli {
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
 
 }  // namespace navaid::cli

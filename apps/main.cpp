@@ -9,7 +9,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"navaid: navigation aids for blind and low-vision people.\n"
-               "Reads recordings (navaid, EuRoC/ASL, TUM RGB-D, NMEA captures, TUM trajectories)."};
+               "Reads recordings (navaid, EuRoC/ASL, TUM RGB-D, NMEA captures, TUM trajectories) and simulates new ones."};
   app.set_help_all_flag("--help-all", "Help for every command");
   int verbosity = 0;
   app.add_flag("-v,--verbose", verbosity, "More log output (repeat for debug)");
@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   navaid::cli::add_info_command(app);
   navaid::cli::add_convert_command(app);
   navaid::cli::add_plot_command(app);
+  navaid::cli::add_simulate_command(app);
   app.parse_complete_callback([&] {
     spdlog::set_level(verbosity >= 2 ? spdlog::level::debug
                       : verbosity == 1 ? spdlog::level::info

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/simulation/time_grid.hpp"
 
 namespace navaid::simulation {
 
@@ -69,17 +70,11 @@ ImuSample ImuModel::measure(const KinematicState& body, Timestamp t) {
 SimulatedImuStream simulate_imu_stream(const WalkerTrajectory& trajectory, ImuModel& model, double t_begin_s,
                                        double t_end_s, Timestamp epoch) {
   SimulatedImuStream out;
-  if (!(t_end_s >= t_begin_s)) return out;
-  const double rate = model.calibration().rate_hz;
-  const Timestamp start = seconds_to_ns(t_begin_s);
-  const Timestamp end = seconds_to_ns(t_end_s);
-  const double period_ns = static_cast<double>(kNanosecondsPerSecond) / rate;
-  const auto count = static_cast<std::size_t>(std::floor(static_cast<double>(end - start) / period_ns + 1e-9)) + 1;
-  out.samples.reserve(count);
-  out.ground_truth.reserve(count);
-  for (std::size_t k = 0; k < count; ++k) {
+  const std::vector<Timestamp> times = time_grid(t_begin_s, t_end_s, model.calibration().rate_hz);
+  out.samples.reserve(times.size());
+  out.ground_truth.reserve(times.size());
+  for (const Timestamp rel : times) {
     // Integer ns grid first, then the trajectory at exactly those times: no drift between the two.
-    const Timestamp rel = start + std::llround(static_cast<double>(k) * period_ns);
     const KinematicState st = trajectory.state(ns_to_seconds(rel));
     out.samples.push_back(model.measure(st, epoch + rel));
     GroundTruthState gt;

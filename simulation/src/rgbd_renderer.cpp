@@ -70,13 +70,13 @@ RgbdRenderer::RgbdRenderer(const RayCaster& caster, const CameraModel& camera)
     }
 }
 
-RenderedFrame RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& options) const {
+RenderedFrame RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& options, const RayCaster* dynamic) const {
   RenderedFrame out;
-  render(T_W_C, options, out);
+  render(T_W_C, options, out, dynamic);
   return out;
 }
 
-void RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& o, RenderedFrame& out) const {
+void RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& o, RenderedFrame& out, const RayCaster* dynamic) const {
   if (!(o.min_depth >= 0.0) || !(o.max_depth >= o.min_depth) || !(o.max_ray_distance > 0.0) ||
       !(o.ambient >= 0.0 && o.ambient <= 1.0) || !(o.sun_direction_W.norm() > 0.0))
     throw Error("RenderOptions: need 0 <= min_depth <= max_depth, max_ray_distance > 0, ambient in [0, 1], "
@@ -98,12 +98,21 @@ void RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& o, RenderedFram
   const Mat3 R_W_C = T_W_C.rotation();
   const Vec3 origin = T_W_C.t;
   const Vec3 sun = o.sun_direction_W.normalized();
-  const auto& prims = caster_->world().primitives();
+  const bool has_dynamic = dynamic != nullptr && !dynamic->mesh().triangles.empty();
   const auto sky_label = static_cast<std::uint8_t>(o.no_hit_class);
   for (std::size_t i = 0, n = bearings_.size(); i < n; ++i) {
     const Vec3& b = bearings_[i];
     if (b.z() <= 0.0) continue;  // no bearing: depth 0, unlabeled, black
-    const auto hit = caster_->cast(origin, R_W_C * b, o.max_ray_distance);
+    const Vec3 dir = R_W_C * b;
+    auto hit = caster_->cast(origin, dir, o.max_ray_distance);
+    const RayCaster* hit_caster = caster_;
+    if (has_dynamic) {
+      const double t_max = hit ? hit->distance : o.max_ray_distance;
+      if (auto near = dynamic->cast(origin, dir, t_max)) {
+        hit = near;
+        hit_caster = dynamic;
+      }
+    }
     if (!hit) {
       if (o.render_labels) out.labels.pixels[i] = sky_label;
       if (o.render_intensity) out.intensity.pixels[i] = o.sky_intensity;
@@ -115,7 +124,7 @@ void RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& o, RenderedFram
     }
     if (o.render_labels) out.labels.pixels[i] = static_cast<std::uint8_t>(hit->semantic);
     if (o.render_intensity) {
-      const Surface& surface = prims[hit->primitive].surface;
+      const Surface& surface = hit_caster->world().primitive(hit->primitive).surface;
       const double lambert = std::abs(hit->normal.dot(sun));  // two-sided
       const double shade = o.ambient + (1.0 - o.ambient) * lambert;
       const double v = 255.0 * surface_texture(surface, hit->point) * shade;

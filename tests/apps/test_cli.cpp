@@ -1,57 +1,30 @@
 // End-to-end tests of the navaid program on the real data sets and on bad input.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <filesystem>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
+using navaid::testing::CliRun;
+using navaid::testing::folder_contents;
+using navaid::testing::navaid_cli;
 using navaid::testing::read_text;
 using navaid::testing::ScratchDir;
 using navaid::testing::shared_data_dir;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
 std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-CliRun navaid_cli(const std::string& args, bool with_stderr = true) {
-  const std::string command = quote(NAVAID_CLI_PATH) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-// Every file of a folder, byte for byte, keyed by relative path.
-std::map<std::string, std::string> folder_contents(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(root))
-    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_text(e.path());
-  return files;
-}
 
 }  // namespace
 
 TEST(Cli, HelpListsEveryCommand) {
   const CliRun run = navaid_cli("--help");
   EXPECT_EQ(run.status, 0);
-  for (const char* cmd : {"info", "convert", "plot"}) EXPECT_NE(run.output.find(cmd), std::string::npos) << cmd;
-  for (const char* cmd : {"info", "convert", "plot"}) EXPECT_EQ(navaid_cli(std::string(cmd) + " --help").status, 0) << cmd;
+  for (const char* cmd : {"info", "convert", "plot", "simulate"}) EXPECT_NE(run.output.find(cmd), std::string::npos) << cmd;
+  for (const char* cmd : {"info", "convert", "plot", "simulate"}) EXPECT_EQ(navaid_cli(std::string(cmd) + " --help").status, 0) << cmd;
   EXPECT_NE(navaid_cli("").status, 0);
   EXPECT_NE(navaid_cli("frobnicate").status, 0);
 }

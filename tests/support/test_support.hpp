@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -33,6 +34,17 @@ class ScratchDir {
 
 void write_text(const std::filesystem::path& file, const std::string& content);
 std::string read_text(const std::filesystem::path& file);
+
+/// Every regular file under `root`, byte for byte, keyed by its relative path.
+std::map<std::string, std::string> folder_contents(const std::filesystem::path& root);
+
+/// Exit status and output of one run of the navaid program.
+struct CliRun {
+  int status = -1;
+  std::string output;  ///< stdout, plus stderr when asked for
+};
+/// Runs `navaid <args>` (args are passed to the shell as written).
+CliRun navaid_cli(const std::string& args, bool with_stderr = true);
 
 /// Runs `f` and returns the E it throws. When it throws nothing, records a test failure that
 /// names `context` and returns nullopt; an exception of another type propagates.

@@ -49,9 +49,11 @@ class RgbdRenderer {
   /// the renderer.
   RgbdRenderer(const RayCaster& caster, const CameraModel& camera);
 
-  RenderedFrame render(const SE3& T_W_C, const RenderOptions& options = {}) const;
+  /// `dynamic` (may be null): a second world, e.g. moving people at this instant, rendered
+  /// together with the static one (the nearer hit wins).
+  RenderedFrame render(const SE3& T_W_C, const RenderOptions& options = {}, const RayCaster* dynamic = nullptr) const;
   /// Same, reusing the buffers of `out`.
-  void render(const SE3& T_W_C, const RenderOptions& options, RenderedFrame& out) const;
+  void render(const SE3& T_W_C, const RenderOptions& options, RenderedFrame& out, const RayCaster* dynamic = nullptr) const;
 
   /// Unit bearing in C of pixel (x, y); zero vector when the pixel cannot be unprojected.
   const Vec3& bearing(int x, int y) const { return bearings_[static_cast<std::size_t>(y) * width_ + x]; }

@@ -1,0 +1,84 @@
+// Cane evaluation rooms: the Smart Cane corridor (seed smart-cane-biped-walking-path-generation,
+// Sec. V-C, Fig. 11) and the BYU augmented-cane obstacle course (seed augmented-cane, Fig. 3.1).
+#include "scenarios/families.hpp"
+
+namespace navaid::simulation::scenarios {
+
+namespace {
+using C = SemanticClass;
+}
+
+// 10 m x 2 m corridor (x in [0, 10], y in [-1, 1]); the path weaves around a low box, a hanging
+// box and a standing cabinet, keeping >= 0.4 m from each.
+void build_corridor(Scenario& s, Rng& rng) {
+  SceneBuilder b(s.world, rng);
+  s.kind = ScenarioKind::kWalk;
+  s.default_mount = "cane";
+  s.origin = {32.026300, 118.855600, 20.0};
+  const double h = 2.6;
+  s.extent.extend(Vec3(0.0, -1.0, 0.0));
+  s.extent.extend(Vec3(10.0, 1.0, h));
+  b.room_shell(Vec2(0.0, -1.0), Vec2(10.0, 1.0), 0.0, h, 0.1);
+  b.box(Vec3(0.0, -1.12, 0.0), Vec3(10.0, -1.0, h), C::kWall, 0.08);
+  b.box(Vec3(0.0, 1.0, 0.0), Vec3(10.0, 1.12, h), C::kWall, 0.08);
+
+  // Obstacle stations, jittered along x by the seed.
+  const double x_low = 2.5 + rng.uniform(-0.2, 0.2);
+  const double x_hang = 5.5 + rng.uniform(-0.2, 0.2);
+  const double x_stand = 8.0 + rng.uniform(-0.2, 0.2);
+  b.box(Vec3(x_low - 0.3, 0.2, 0.0), Vec3(x_low + 0.3, 1.0, 0.3), C::kUnlabeled, 0.05);       // low box against the left wall
+  b.box(Vec3(x_hang - 0.3, -1.0, 1.3), Vec3(x_hang + 0.3, -0.2, 1.9), C::kTrafficSign, 0.05);  // hanging sign board
+  b.cylinder(Vec2(x_hang, -0.6), 1.9, 0.01, h - 1.9, C::kPole, 0.05);                           // its suspension
+  b.box(Vec3(x_stand - 0.25, 0.05, 0.0), Vec3(x_stand + 0.25, 0.55, 1.2), C::kUnlabeled, 0.05);  // standing cabinet
+  s.path = {Vec2(0.0, 0.0),          Vec2(x_low - 1.3, 0.0),   Vec2(x_low - 0.5, -0.4), Vec2(x_low + 0.9, -0.4),
+            Vec2(x_hang - 0.9, 0.4), Vec2(x_hang + 0.9, 0.4),  Vec2(x_stand - 0.7, -0.45), Vec2(x_stand + 0.7, -0.45),
+            Vec2(10.0, 0.0)};
+}
+
+// BYU demonstration: 10 m x 10 m room; the user starts near the middle of the west wall facing
+// east; dividers force three turns (right, left, left) to a goal area in the north-east corner.
+// The head-high hanging obstacle hangs over the walking line (deliberate); the waist-high one,
+// the chairs and the dividers keep >= 0.3 m from it.
+void build_obstacle_course(Scenario& s, Rng& rng) {
+  SceneBuilder b(s.world, rng);
+  s.kind = ScenarioKind::kWalk;
+  s.default_mount = "cane";
+  s.origin = {40.246900, -111.649300, 1400.0};
+  const double h = 2.7;
+  s.extent.extend(Vec3(0.0, 0.0, 0.0));
+  s.extent.extend(Vec3(10.0, 10.0, h));
+  b.room_shell(Vec2(0.0, 0.0), Vec2(10.0, 10.0), 0.0, h, 0.15);
+  b.wall(Vec2(0.0, -0.05), Vec2(10.0, -0.05), 0.1, 0.0, h);
+  b.wall(Vec2(0.0, 10.05), Vec2(10.0, 10.05), 0.1, 0.0, h);
+  b.wall(Vec2(-0.05, 0.0), Vec2(-0.05, 10.0), 0.1, 0.0, h, {{5.0, 1.0}});
+  b.wall(Vec2(10.05, 0.0), Vec2(10.05, 10.0), 0.1, 0.0, h);
+
+  // Vertical dividers (1.8 m panels).
+  b.box(Vec3(4.175, 2.6, 0.0), Vec3(4.225, 10.0, 1.8), C::kWall, 0.1);
+  b.box(Vec3(6.975, 2.8, 0.0), Vec3(7.025, 8.0, 1.8), C::kWall, 0.1);
+  b.box(Vec3(0.0, 6.6, 0.0), Vec3(2.4, 6.65, 1.8), C::kWall, 0.1);
+
+  // Chairs on the floor beside the walking line, slightly jittered by the seed.
+  auto jitter = [&] { return Vec2(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)); };
+  b.chair(Vec2(1.8, 3.0) + jitter(), 0.0, 0.3);
+  b.chair(Vec2(5.4, 0.5) + jitter(), 0.0, 1.6);
+  b.chair(Vec2(9.35, 4.5) + jitter(), 0.0, 3.1);
+  b.chair(Vec2(7.75, 5.6) + Vec2(rng.uniform(-0.1, 0.0), rng.uniform(-0.1, 0.1)), 0.0, -0.4);
+  b.chair(Vec2(5.6, 6.0) + jitter(), 0.0, 2.0);
+
+  // Hanging obstacles: head-high over the south leg (deliberate), waist-high beside the east leg.
+  const std::uint32_t head = s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(5.6, 1.4, 1.7)), Vec3(0.2, 0.2, 0.2)},
+                                         b.surface(C::kUnlabeled, 0.05));
+  const std::uint32_t cord = b.cylinder(Vec2(5.6, 1.4), 1.9, 0.005, h - 1.9, C::kUnlabeled, 0.05);
+  s.deliberate_obstacles = {head, cord};
+  s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(9.15, 6.5, 1.0)), Vec3(0.3, 0.3, 0.25)}, b.surface(C::kUnlabeled, 0.05));
+  b.cylinder(Vec2(9.15, 6.5), 1.25, 0.005, h - 1.25, C::kUnlabeled, 0.05);
+
+  // The music source marking the goal: a speaker on a small table in the corner.
+  b.table(Vec2(9.5, 9.5), Vec2(0.3, 0.3), 0.0, 0.0);
+  b.box(Vec3(9.35, 9.4, 0.76), Vec3(9.65, 9.6, 1.1), C::kUnlabeled, 0.03);
+
+  s.path = {Vec2(0.8, 5.0), Vec2(2.8, 5.0), Vec2(2.8, 1.4), Vec2(8.4, 1.4), Vec2(8.4, 8.6)};
+}
+
+}  // namespace navaid::simulation::scenarios
