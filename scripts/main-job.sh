@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# navaid's main job. Until the simulator lands it summarises and plots real recorded data from
-# ../shared/data: a GNSS receiver capture (converted to a navaid recording, then drawn as an ENU
-# track) and the EuRoC V1_02 ground truth with a real estimator's trajectory.
+# navaid's main job: a full-device simulated walk (eLabrador Route 1 with the head mount: RGB-D
+# images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode,
+# and a summary and plot of real recorded data from ../shared/data (a GNSS receiver capture and
+# the EuRoC V1_02 ground truth).
 # Usage: bash scripts/main-job.sh [OUT_DIR]   (default out/main-job)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,6 +19,16 @@ if [ ! -d "$DATA/gpsd-nmea" ] || [ ! -d "$DATA/rpg-euroc-V1_02" ]; then
 fi
 rm -rf "$OUT"
 mkdir -p "$OUT"
+
+echo "== Simulated walk: route1, head mount, first 40 s with images (render cache in $OUT/render-cache)"
+$NAVAID simulate --scenario route1 --mount head --seed 7 --set duration=40 --cache "$OUT/render-cache" \
+  --out "$OUT/sim-route1-head"
+$NAVAID info "$OUT/sim-route1-head" | tee "$OUT/sim-route1-head-info.txt"
+$NAVAID plot "$OUT/sim-route1-head" --out "$OUT/sim-route1-head-track.png"
+
+echo "== Simulated walk: the whole of route1 in feature mode"
+$NAVAID simulate --scenario route1 --mount head --seed 7 --set simulation.mode=features --out "$OUT/sim-route1-features"
+$NAVAID info "$OUT/sim-route1-features" | tee "$OUT/sim-route1-features-info.txt"
 
 echo "== GNSS capture: summary, conversion to a navaid recording, ENU track"
 $NAVAID info "$DATA/gpsd-nmea/haicom-305N.log" | tee "$OUT/gnss-capture-info.txt"
