@@ -108,3 +108,18 @@ TEST(SimulateCli, BadInputIsAClearError) {
   EXPECT_EQ(run.status, 0);
   EXPECT_NE(run.output.find("lab-walk-5"), std::string::npos) << run.output;
 }
+
+TEST(ScenarioMapCli, ExportsVoxelsOccupancyAndTopView) {
+  ScratchDir dir("scenario_map");
+  const auto run = navaid_cli("scenario-map --scenario corridor --resolution 0.1 --out '" + dir.path().string() + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (const char* f : {"corridor-voxels.csv", "corridor-occupancy.pgm", "corridor-occupancy.yaml", "corridor-topview.png"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const std::string pgm = read_text(dir / "corridor-occupancy.pgm");
+  EXPECT_EQ(pgm.rfind("P5", 0), 0u);
+  EXPECT_NE(read_text(dir / "corridor-occupancy.yaml").find("resolution: 0.1"), std::string::npos);
+  EXPECT_NE(read_text(dir / "corridor-voxels.csv").find(",wall"), std::string::npos);
+  const auto bad = navaid_cli("scenario-map --scenario corridor --band 2 1 --out '" + (dir / "x").string() + "'");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("--band"), std::string::npos) << bad.output;
+}
