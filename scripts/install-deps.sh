@@ -13,6 +13,7 @@ PACKAGES=(
   libgeographiclib-dev
   libembree-dev
   libopencv-dev
+  libceres-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
 )

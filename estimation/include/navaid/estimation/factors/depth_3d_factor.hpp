@@ -1,0 +1,42 @@
+#pragma once
+// Depth-augmented 3D factor (W-ROMA §V-B, r_d^kj) for a feature first observed in keyframe i
+// (the anchor, m_i = [x_i, y_i, 1] on the normalized plane) and tracked into keyframe j with a
+// depth measurement:
+//
+//   measured  (camera C_j):  X = x_j Z,  Y = y_j Z,  Z    (m_j = [x_j, y_j, 1], Z from the depth image)
+//   estimated (camera C_j):  [X^, Y^, Z^] = R_cj_ci m_i / lambda_i + t_cj_ci
+//                            (T_cj_ci = T_B_C^-1 T_W_Bj^-1 T_W_Bi T_B_C, lambda_i the anchor's inverse depth)
+//   r = Sigma^-1/2 [X - X^, Y - Y^, 1/Z - 1/Z^],   Sigma = diag(sigma_x^2, sigma_y^2, sigma_lambda^2)
+//   sigma_x = sigma_y = Z sigma / f   (sigma: image noise, 1.5 px in the paper; f: focal length [px])
+//   sigma_lambda = sigma_d / (f b)    (inverse_depth_sigma(), disparity noise)
+//
+// The paper writes the third term as 1/Z - Z^ with Z^ an inverse depth; here Z^ is the estimated
+// depth and the term is the inverse-depth difference, as the covariance sigma_lambda says.
+// Sigma uses the measured Z, so the weights are constant during the optimization.
+// Parameter blocks: pose_i T_W_Bi (7), pose_j T_W_Bj (7), extrinsic T_B_C (7), lambda_i (1).
+// Callers wrap it in a Cauchy loss. Evaluate() returns false when Z^ <= 1e-6 m.
+#include <ceres/sized_cost_function.h>
+
+#include <Eigen/Core>
+
+namespace navaid::estimation {
+
+class Depth3dFactor final : public ceres::SizedCostFunction<3, 7, 7, 7, 1> {
+ public:
+  /// Throws Error unless depth_j_m > 0 and ConfigError unless focal_px, sigma_px, sigma_lambda > 0.
+  Depth3dFactor(const Eigen::Vector2d& m_anchor, const Eigen::Vector2d& m_target, double depth_j_m,
+                double focal_px, double sigma_lambda, double sigma_px = 1.5);
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+  /// The measured point [X, Y, 1/Z] and the diagonal of Sigma^-1/2.
+  const Eigen::Vector3d& measurement() const { return measurement_; }
+  const Eigen::Vector3d& sqrt_information() const { return sqrt_information_; }
+
+ private:
+  Eigen::Vector3d m_anchor_;
+  Eigen::Vector3d measurement_;
+  Eigen::Vector3d sqrt_information_;
+};
+
+}  // namespace navaid::estimation

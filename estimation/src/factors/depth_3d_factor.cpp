@@ -1,0 +1,53 @@
+#include "navaid/estimation/factors/depth_3d_factor.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "anchored_point.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/estimation/factors/pose_parametrization.hpp"
+
+namespace navaid::estimation {
+
+namespace {
+constexpr double kMinDepth = 1e-6;  // [m] in front of the camera
+}
+
+Depth3dFactor::Depth3dFactor(const Eigen::Vector2d& m_anchor, const Eigen::Vector2d& m_target, double depth_j_m,
+                             double focal_px, double sigma_lambda, double sigma_px)
+    : m_anchor_(m_anchor.x(), m_anchor.y(), 1.0) {
+  if (!(depth_j_m > 0.0) || !std::isfinite(depth_j_m)) {
+    throw Error("Depth3dFactor: measured depth must be finite and > 0, got " + std::to_string(depth_j_m));
+  }
+  auto require = [](double v, const char* key) {
+    if (!(v > 0.0) || !std::isfinite(v)) throw ConfigError("depth_3d_factor", key, "must be finite and > 0");
+  };
+  require(focal_px, "focal_px");
+  require(sigma_lambda, "sigma_lambda");
+  require(sigma_px, "sigma_px");
+  measurement_ << m_target.x() * depth_j_m, m_target.y() * depth_j_m, 1.0 / depth_j_m;
+  const double sigma_xy = depth_j_m * sigma_px / focal_px;
+  sqrt_information_ << 1.0 / sigma_xy, 1.0 / sigma_xy, 1.0 / sigma_lambda;
+}
+
+bool Depth3dFactor::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
+  const bool want = jacobians != nullptr;
+  const detail::AnchoredPoint pt = detail::transfer_anchored_point(parameters[0], parameters[1], parameters[2],
+                                                                   parameters[3][0], m_anchor_, want);
+  const Vec3& P = pt.P_ct;
+  if (!(P.z() > kMinDepth)) return false;
+  const Vec3 predicted(P.x(), P.y(), 1.0 / P.z());
+  Eigen::Map<Vec3>{residuals} = sqrt_information_.cwiseProduct(measurement_ - predicted);
+  if (!want) return true;
+
+  // d r / d P = -S d[X, Y, 1/Z] / dP
+  const Mat3 d_point = Vec3(-sqrt_information_.x(), -sqrt_information_.y(),
+                            sqrt_information_.z() / (P.z() * P.z())).asDiagonal();
+  if (jacobians[0]) write_pose_jacobian<3>(d_point * pt.d_anchor, parameters[0], jacobians[0]);
+  if (jacobians[1]) write_pose_jacobian<3>(d_point * pt.d_target, parameters[1], jacobians[1]);
+  if (jacobians[2]) write_pose_jacobian<3>(d_point * pt.d_extrinsic, parameters[2], jacobians[2]);
+  if (jacobians[3]) Eigen::Map<Vec3>{jacobians[3]} = d_point * pt.d_lambda;
+  return true;
+}
+
+}  // namespace navaid::estimation

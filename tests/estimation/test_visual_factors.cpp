@@ -1,0 +1,171 @@
+// Reprojection, inverse-depth and depth-augmented 3D factors.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "factor_check.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/estimation/factors/depth_3d_factor.hpp"
+#include "navaid/estimation/factors/inverse_depth_factor.hpp"
+#include "navaid/estimation/factors/pose_parametrization.hpp"
+#include "navaid/estimation/factors/reprojection_factor.hpp"
+
+namespace navaid::estimation {
+namespace {
+
+using testing::jacobians_match;
+using testing::random_pose;
+using testing::random_rotation;
+using testing::random_vector;
+
+// Two keyframes seeing one feature, built with plain SE3 algebra (independent of the factors).
+struct TwoViews {
+  double anchor[kPoseSize], target[kPoseSize], extrinsic[kPoseSize];
+  double lambda[1];
+  Eigen::Vector2d m_anchor, m_target;
+  double z_target;  // true depth in the target camera
+};
+
+TwoViews two_views(std::mt19937_64& rng) {
+  for (;;) {
+    const SE3 T_W_Ba = random_pose(rng);
+    const SE3 T_B_C(random_rotation(rng), random_vector(rng, 0.1));
+    // The target camera looks at the same scene from nearby.
+    const SE3 T_Ca_Ct(random_rotation(rng, 0.3), random_vector(rng, 0.4));
+    const SE3 T_W_Bt = T_W_Ba * T_B_C * T_Ca_Ct * T_B_C.inverse();
+    std::uniform_real_distribution<double> depth(1.0, 6.0), xy(-0.4, 0.4);
+    const double z = depth(rng);
+    const double x = xy(rng), y = xy(rng);
+    const Vec3 P_ca(x * z, y * z, z);
+    const Vec3 P_ct = T_Ca_Ct.inverse() * P_ca;
+    if (P_ct.z() < 0.5) continue;
+    TwoViews v;
+    pose_to_block(T_W_Ba, v.anchor);
+    pose_to_block(T_W_Bt, v.target);
+    pose_to_block(T_B_C, v.extrinsic);
+    v.lambda[0] = 1.0 / z;
+    v.m_anchor = Eigen::Vector2d(x, y);
+    v.m_target = P_ct.head<2>() / P_ct.z();
+    v.z_target = P_ct.z();
+    return v;
+  }
+}
+
+// The feature in the target camera for the (possibly perturbed) blocks of v.
+Vec3 point_in_target(const TwoViews& v) {
+  const Vec3 P_ca = Vec3(v.m_anchor.x(), v.m_anchor.y(), 1.0) / v.lambda[0];
+  const SE3 T_B_C = pose_from_block(v.extrinsic);
+  return (T_B_C.inverse() * pose_from_block(v.target).inverse() * pose_from_block(v.anchor) * T_B_C) * P_ca;
+}
+
+void perturb(TwoViews& v, std::mt19937_64& rng) {
+  for (double* block : {v.anchor, v.target, v.extrinsic}) {
+    Vec6 xi;
+    xi << random_vector(rng, 0.05), random_vector(rng, 0.05);
+    pose_to_block(se3_boxplus(pose_from_block(block), xi), block);
+  }
+  v.lambda[0] *= 1.1;
+}
+
+std::vector<double*> blocks(TwoViews& v) { return {v.anchor, v.target, v.extrinsic, v.lambda}; }
+
+constexpr double kFocal = 525.0;
+
+TEST(ReprojectionFactor, ZeroAtTruthAndPixelScaledOffIt) {
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    TwoViews v = two_views(rng);
+    const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
+    Eigen::Vector2d r;
+    ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
+    EXPECT_LT(r.norm(), 1e-9);
+    perturb(v, rng);
+    const Vec3 P = point_in_target(v);
+    ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
+    const Eigen::Vector2d expected = kFocal / 1.5 * (P.head<2>() / P.z() - v.m_target);
+    EXPECT_LT((r - expected).norm(), 1e-9 * (1.0 + expected.norm()));
+  }
+}
+
+TEST(ReprojectionFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
+  std::mt19937_64 rng(12);
+  const PoseManifold pm;
+  for (int trial = 0; trial < 20; ++trial) {
+    TwoViews v = two_views(rng);
+    const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
+    perturb(v, rng);
+    EXPECT_TRUE(jacobians_match(f, blocks(v), {&pm, &pm, &pm, nullptr})) << "trial " << trial;
+  }
+}
+
+TEST(ReprojectionFactor, RejectsBadSettingsAndPointsBehindTheCamera) {
+  EXPECT_THROW(ReprojectionFactor({0, 0}, {0, 0}, 0.0, 1.0), ConfigError);
+  EXPECT_THROW(ReprojectionFactor({0, 0}, {0, 0}, 500.0, -1.0), ConfigError);
+  std::mt19937_64 rng(13);
+  TwoViews v = two_views(rng);
+  const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
+  v.lambda[0] = -v.lambda[0];  // the point is now behind both cameras
+  Eigen::Vector2d r;
+  EXPECT_FALSE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
+}
+
+TEST(InverseDepthFactor, KnownAnswersAndJacobian) {
+  // Disparity d = f b / Z: sigma_d = 0.2 px, f = 500 px, b = 0.08 m -> sigma_lambda = 0.005 1/m.
+  const double sigma = inverse_depth_sigma(0.2, 500.0, 0.08);
+  EXPECT_DOUBLE_EQ(sigma, 0.005);
+  const InverseDepthFactor f(2.0, sigma);
+  double lambda[1] = {0.5};
+  double r;
+  const double* p[] = {lambda};
+  ASSERT_TRUE(f.Evaluate(p, &r, nullptr));
+  EXPECT_DOUBLE_EQ(r, 0.0);
+  lambda[0] = 0.49;  // e = 1/Z - lambda = 0.01 -> 2 sigma
+  ASSERT_TRUE(f.Evaluate(p, &r, nullptr));
+  EXPECT_NEAR(r, 2.0, 1e-12);
+  EXPECT_TRUE(jacobians_match(f, {lambda}, {nullptr}));
+  EXPECT_THROW(InverseDepthFactor(0.0, sigma), Error);
+  EXPECT_THROW(InverseDepthFactor(2.0, 0.0), ConfigError);
+  EXPECT_THROW(inverse_depth_sigma(0.2, 500.0, 0.0), ConfigError);
+}
+
+TEST(Depth3dFactor, ZeroAtTruthAndPaperResidualOffIt) {
+  std::mt19937_64 rng(21);
+  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
+  for (int trial = 0; trial < 20; ++trial) {
+    TwoViews v = two_views(rng);
+    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda);
+    Vec3 r;
+    ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
+    EXPECT_LT(r.norm(), 1e-8);
+    perturb(v, rng);
+    ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
+    // r = Sigma^-1/2 [X - X^, Y - Y^, 1/Z - 1/Z^], sigma_x = sigma_y = Z 1.5 / f.
+    const Vec3 P = point_in_target(v);
+    const double sxy = v.z_target * 1.5 / kFocal;
+    const Vec3 expected((v.m_target.x() * v.z_target - P.x()) / sxy, (v.m_target.y() * v.z_target - P.y()) / sxy,
+                        (1.0 / v.z_target - 1.0 / P.z()) / sigma_lambda);
+    EXPECT_LT((r - expected).norm(), 1e-9 * (1.0 + expected.norm()));
+  }
+}
+
+TEST(Depth3dFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
+  std::mt19937_64 rng(22);
+  const PoseManifold pm;
+  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
+  for (int trial = 0; trial < 20; ++trial) {
+    TwoViews v = two_views(rng);
+    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda);
+    perturb(v, rng);
+    EXPECT_TRUE(jacobians_match(f, blocks(v), {&pm, &pm, &pm, nullptr})) << "trial " << trial;
+  }
+}
+
+TEST(Depth3dFactor, RejectsBadInput) {
+  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 0.0, kFocal, 0.01), Error);
+  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 2.0, kFocal, 0.0), ConfigError);
+  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 2.0, -1.0, 0.01), ConfigError);
+}
+
+}  // namespace
+}  // namespace navaid::estimation
