@@ -23,6 +23,12 @@ ImuModel::ImuModel(const ImuCalibration& calibration, const ImuModelOptions& opt
   require(calib_.gyro_random_walk >= 0.0, "gyro_random_walk", "must be >= 0");
   require(calib_.accel_noise_density >= 0.0, "accel_noise_density", "must be >= 0");
   require(calib_.accel_random_walk >= 0.0, "accel_random_walk", "must be >= 0");
+  // A scale/misalignment matrix is near the identity; far from it is a unit or sign mistake.
+  for (const Mat3* m : {&options_.gyro_scale_misalignment, &options_.accel_scale_misalignment})
+    if (!m->allFinite() || (*m - Mat3::Identity()).cwiseAbs().maxCoeff() > 0.2)
+      throw ConfigError("ImuModelOptions", m == &options_.gyro_scale_misalignment ? "gyro_scale_misalignment"
+                                                                                  : "accel_scale_misalignment",
+                        "must be within 0.2 of the identity in every entry (scale errors and misalignments are small)");
 }
 
 double ImuModel::gyro_noise_sigma() const { return calib_.gyro_noise_density * std::sqrt(calib_.rate_hz); }
@@ -58,8 +64,8 @@ ImuSample ImuModel::measure(const KinematicState& body, Timestamp t) {
 
   ImuSample s;
   s.t = t;
-  s.gyro = R_B_I.transpose() * w + b_g_;
-  s.accel = (R_W_B * R_B_I).transpose() * (a_W_I - kGravityW) + b_a_;
+  s.gyro = options_.gyro_scale_misalignment * (R_B_I.transpose() * w) + b_g_;
+  s.accel = options_.accel_scale_misalignment * ((R_W_B * R_B_I).transpose() * (a_W_I - kGravityW)) + b_a_;
   if (options_.white_noise) {
     s.gyro += gaussian3(gyro_noise_sigma());
     s.accel += gaussian3(accel_noise_sigma());

@@ -17,6 +17,15 @@ Vec3 get_vec3(const Config& c, const char* key, const Vec3& fallback, Range allo
   return Vec3(v[0], v[1], v[2]);
 }
 
+// A 3x3 matrix given row by row as 9 numbers.
+Mat3 get_mat3(const Config& c, const char* key, const Mat3& fallback) {
+  if (!c.has(key)) return fallback;
+  const auto v = c.get_doubles(key, 9, {-10, 10});
+  Mat3 m;
+  m << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+  return m;
+}
+
 void read_camera(const Config& c, SimulationConfig& s, const SensorPreset& preset) {
   CameraCalibration cam = preset.camera;
   if (c.has("sensor.camera.resolution")) {
@@ -78,6 +87,8 @@ void read_imu(const Config& c, SimulationConfig& s, const SensorPreset& preset) 
   s.imu_options.bias_walk = noise;
   s.imu_options.initial_gyro_bias = get_vec3(c, "sensor.imu.initial_gyro_bias", Vec3::Zero(), {-1, 1});
   s.imu_options.initial_accel_bias = get_vec3(c, "sensor.imu.initial_accel_bias", Vec3::Zero(), {-5, 5});
+  s.imu_options.gyro_scale_misalignment = get_mat3(c, "sensor.imu.gyro_scale_misalignment", Mat3::Identity());
+  s.imu_options.accel_scale_misalignment = get_mat3(c, "sensor.imu.accel_scale_misalignment", Mat3::Identity());
 }
 
 void read_gps(const Config& c, SimulationConfig& s, const Scenario& scenario) {
@@ -96,6 +107,15 @@ void read_gps(const Config& c, SimulationConfig& s, const Scenario& scenario) {
       multipath ? c.get_double("sensor.gps.multipath_sigma_vertical", g.multipath_sigma_vertical_m, {0, 100}) : 0.0;
   g.canyon_gain = c.get_double("sensor.gps.canyon_gain", g.canyon_gain, {0, 100});
   g.noise = c.get_bool("sensor.noise", true) && c.get_bool("sensor.gps.noise", true);
+  if (c.has("sensor.gps.outages")) {  // [start, end, start, end, ...] seconds since the walk starts
+    const auto v = c.get_doubles("sensor.gps.outages", 0, {-60, 1e6});
+    if (v.size() % 2 != 0)
+      throw ConfigError(c.origin("sensor.gps.outages"), "sensor.gps.outages", "needs pairs [start, end, ...] in seconds");
+    for (std::size_t i = 0; i < v.size(); i += 2)
+      g.outages.push_back({kSimulationEpoch + seconds_to_ns(v[i]), kSimulationEpoch + seconds_to_ns(v[i + 1])});
+  }
+  if (c.has("sensor.gps.outage_canyon_factor"))
+    g.outage_canyon_factor = c.get_double("sensor.gps.outage_canyon_factor", {0, 1});
   validate(g, "sensor.gps");
 }
 
@@ -104,6 +124,7 @@ void read_mag(const Config& c, SimulationConfig& s) {
   s.mag_rate_hz = c.get_double("sensor.mag.rate", s.mag_rate_hz, {1, 1000});
   s.mag.sigma_t = c.get_double("sensor.mag.sigma", s.mag.sigma_t, {0, 1e-4});
   s.mag.hard_iron_t = get_vec3(c, "sensor.mag.hard_iron", s.mag.hard_iron_t, {-1e-3, 1e-3});
+  s.mag.soft_iron = get_mat3(c, "sensor.mag.soft_iron", s.mag.soft_iron);
   s.mag.noise = c.get_bool("sensor.noise", true) && c.get_bool("sensor.mag.noise", true);
   validate(s.mag, "sensor.mag");
 }

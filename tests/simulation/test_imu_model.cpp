@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
+#include "test_support.hpp"
 
 namespace navaid::simulation {
 namespace {
@@ -103,6 +104,23 @@ TEST(ImuModel, StaticLevelImuMeasuresMinusGravity) {
   const ImuSample s = model.measure(KinematicState{}, 0);
   EXPECT_LT((s.accel - Vec3(0, 0, 9.81)).norm(), 1e-12);
   EXPECT_LT(s.gyro.norm(), 1e-15);
+}
+
+TEST(ImuModel, ScaleAndMisalignmentMultiplyTheTrueSignals) {
+  ImuModelOptions opt = noiseless();
+  opt.accel_scale_misalignment << 1.01, 0.002, -0.001, 0.0, 0.99, 0.003, 0.001, -0.002, 1.02;
+  opt.gyro_scale_misalignment << 0.98, 0.0, 0.004, 0.001, 1.03, 0.0, 0.0, 0.002, 1.0;
+  ImuModel model(calibration(200.0), opt);
+  KinematicState turning;
+  turning.omega_B = Vec3(0.1, -0.2, 0.5);
+  const ImuSample s = model.measure(turning, 0);
+  EXPECT_LT((s.accel - opt.accel_scale_misalignment * Vec3(0, 0, 9.81)).norm(), 1e-12);
+  EXPECT_LT((s.gyro - opt.gyro_scale_misalignment * turning.omega_B).norm(), 1e-15);
+  ImuModelOptions bad = noiseless();
+  bad.accel_scale_misalignment(0, 0) = 9.81;  // a unit mistake, not a scale error
+  const auto e = testing::expect_throw<ConfigError>([&] { ImuModel(calibration(200.0), bad); });
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->key(), "accel_scale_misalignment");
 }
 
 TEST(ImuModel, WhiteNoiseStatisticsMatchDensity) {

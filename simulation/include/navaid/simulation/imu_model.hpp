@@ -1,10 +1,11 @@
 #pragma once
 // IMU measurement model for the simulator: exact kinematics plus Kalibr-style noise.
 //
-//   gyro  = omega_I + b_g + n_g
-//   accel = R_W_I^T (a_W_I - g_W) + b_a + n_a,   g_W = (0, 0, -9.81)
+//   gyro  = M_g omega_I + b_g + n_g
+//   accel = M_a R_W_I^T (a_W_I - g_W) + b_a + n_a,   g_W = (0, 0, -9.81)
 //
-// where I is the IMU frame (calibration T_B_I; identity when the body is the IMU, in which case
+// where M_g, M_a are scale/misalignment matrices (identity by default: an ideal, calibrated IMU;
+// diagonal = scale factors, off-diagonal = axis misalignment), I is the IMU frame (calibration T_B_I; identity when the body is the IMU, in which case
 // omega_I = omega_B and a_W_I = a_W). Continuous-time densities become discrete white noise
 // sigma = density * sqrt(rate_hz); biases follow a random walk, each step sigma = random_walk *
 // sqrt(dt) with dt the time since the previous measure() call. Randomness comes from one
@@ -28,6 +29,8 @@ struct ImuModelOptions {
   bool bias_walk = true;    ///< let b_g, b_a random-walk (otherwise they stay at the initial values)
   Vec3 initial_gyro_bias = Vec3::Zero();   ///< [rad/s]
   Vec3 initial_accel_bias = Vec3::Zero();  ///< [m/s^2]
+  Mat3 gyro_scale_misalignment = Mat3::Identity();   ///< M_g, within 0.2 of I entry-wise
+  Mat3 accel_scale_misalignment = Mat3::Identity();  ///< M_a, within 0.2 of I entry-wise
 };
 
 class ImuModel {
