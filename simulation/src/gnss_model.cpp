@@ -7,35 +7,18 @@
 #include <utility>
 
 #include "navaid/core/errors.hpp"
+#include "value_checks.hpp"
 
 namespace navaid::simulation {
 
-namespace {
-
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-// Finite and within [lo, hi]; message names the allowed range.
-void check_range(const std::string& source, const std::string& key, double v, double lo, double hi,
-                 const std::string& unit) {
-  if (!std::isfinite(v) || v < lo || v > hi) {
-    throw ConfigError(source, key,
-                      "expected a value in [" + str(lo) + ", " + str(hi) + "] " + unit + ", found " + str(v));
-  }
-}
-
-}  // namespace
+using detail::check_range;
+using detail::format_number;
 
 void validate(const GnssModelConfig& c, const std::string& source) {
   check_range(source, "rate_hz", c.rate_hz, 1.0, 10.0, "Hz");
   check_range(source, "sigma_horizontal_m", c.sigma_horizontal_m, 0.0, 1e3, "m");
   check_range(source, "sigma_vertical_m", c.sigma_vertical_m, 0.0, 1e3, "m");
-  if (!std::isfinite(c.multipath_tau_s) || c.multipath_tau_s <= 0.0 || c.multipath_tau_s > 1e6) {
-    throw ConfigError(source, "multipath_tau_s", "expected a value in (0, 1e6] s, found " + str(c.multipath_tau_s));
-  }
+  check_range(source, "multipath_tau_s", c.multipath_tau_s, 0.0, 1e6, "s", true);
   check_range(source, "multipath_sigma_horizontal_m", c.multipath_sigma_horizontal_m, 0.0, 1e3, "m");
   check_range(source, "multipath_sigma_vertical_m", c.multipath_sigma_vertical_m, 0.0, 1e3, "m");
   check_range(source, "canyon_gain", c.canyon_gain, 0.0, 100.0, "");
@@ -51,7 +34,7 @@ void validate(const GnssModelConfig& c, const std::string& source) {
   }
   check_range(source, "geoid_separation_m", c.geoid_separation_m, -150.0, 150.0, "m");
   if (!std::isfinite(c.uere_m) || c.uere_m <= 0.0 || c.uere_m > 1e3) {
-    throw ConfigError(source, "uere_m", "expected a value in (0, 1e3] m, found " + str(c.uere_m));
+    throw ConfigError(source, "uere_m", "expected a value in (0, 1e3] m, found " + format_number(c.uere_m));
   }
   if (c.satellites < 4 || c.satellites > 64) {
     throw ConfigError(source, "satellites", "expected an integer in [4, 64], found " + std::to_string(c.satellites));
@@ -90,7 +73,7 @@ bool GnssModel::in_outage(Timestamp t, double canyon_factor) const {
 std::optional<GpsFix> GnssModel::measure(Timestamp t, const Vec3& p_W_antenna, const SE3& T_ENU_W,
                                          double canyon_factor) {
   if (!(canyon_factor >= 0.0 && canyon_factor <= 1.0)) {
-    throw std::invalid_argument("GnssModel::measure: canyon_factor must be in [0, 1], got " + str(canyon_factor));
+    throw std::invalid_argument("GnssModel::measure: canyon_factor must be in [0, 1], got " + format_number(canyon_factor));
   }
   if (last_t_ && t < *last_t_) {
     throw std::invalid_argument("GnssModel::measure: time went backwards (" + format_seconds(t) + " s after " +

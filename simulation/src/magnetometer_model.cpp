@@ -6,21 +6,19 @@
 #include <utility>
 
 #include "navaid/core/errors.hpp"
+#include "value_checks.hpp"
 
 namespace navaid::simulation {
 
-namespace {
+using detail::check_range;
+using detail::format_number;
 
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+namespace {
 
 void check_vector(const std::string& source, const std::string& key, const Vec3& v, double max_norm_t) {
   if (!v.allFinite() || v.norm() > max_norm_t) {
     throw ConfigError(source, key,
-                      "expected a finite vector with norm <= " + str(max_norm_t) + " T, found norm " + str(v.norm()));
+                      "expected a finite vector with norm <= " + format_number(max_norm_t) + " T, found norm " + format_number(v.norm()));
   }
 }
 
@@ -31,7 +29,7 @@ void validate(const MagnetometerModelConfig& c, const std::string& source) {
   if (c.field_enu_t.norm() == 0.0) throw ConfigError(source, "field_enu_t", "expected a non-zero field");
   check_vector(source, "hard_iron_t", c.hard_iron_t, 1e-3);
   if (!std::isfinite(c.sigma_t) || c.sigma_t < 0.0 || c.sigma_t > 1e-4) {
-    throw ConfigError(source, "sigma_t", "expected a value in [0, 1e-4] T, found " + str(c.sigma_t));
+    throw ConfigError(source, "sigma_t", "expected a value in [0, 1e-4] T, found " + format_number(c.sigma_t));
   }
 
   const Mat3& a = c.soft_iron;
@@ -39,8 +37,8 @@ void validate(const MagnetometerModelConfig& c, const std::string& source) {
   const double asymmetry = (a - a.transpose()).norm();
   if (asymmetry > kSoftIronSymmetryTolerance * a.norm()) {
     throw ConfigError(source, "soft_iron",
-                      "expected a near-symmetric matrix (|A - A^T| <= " + str(kSoftIronSymmetryTolerance) +
-                          " |A|), found |A - A^T| / |A| = " + str(a.norm() > 0 ? asymmetry / a.norm() : 0.0));
+                      "expected a near-symmetric matrix (|A - A^T| <= " + format_number(kSoftIronSymmetryTolerance) +
+                          " |A|), found |A - A^T| / |A| = " + format_number(a.norm() > 0 ? asymmetry / a.norm() : 0.0));
   }
   // Positive eigenvalues of the symmetric part imply x^T A x > 0, hence A invertible; the ratio
   // bound rejects numerically singular matrices too.
@@ -49,8 +47,8 @@ void validate(const MagnetometerModelConfig& c, const std::string& source) {
   if (!(ev[0] > 0.0) || ev[0] < kSoftIronMinEigenvalueRatio * ev[2]) {
     throw ConfigError(source, "soft_iron",
                       "expected a positive definite, invertible matrix (eigenvalues > 0, min/max >= " +
-                          str(kSoftIronMinEigenvalueRatio) + "), found eigenvalues " + str(ev[0]) + ", " +
-                          str(ev[1]) + ", " + str(ev[2]));
+                          format_number(kSoftIronMinEigenvalueRatio) + "), found eigenvalues " + format_number(ev[0]) + ", " +
+                          format_number(ev[1]) + ", " + format_number(ev[2]));
   }
 }
 

@@ -10,29 +10,16 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
+#include "value_checks.hpp"
 #include "navaid/simulation/frame_rng.hpp"
 #include "navaid/simulation/gaussian_sampler.hpp"
 
 namespace navaid::simulation {
 
+using detail::check_range;
+using detail::format_number;
+
 namespace {
-
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-// Finite and in [lo, hi] (or (lo, hi] when open_lo); the message names the allowed range.
-void check_range(const std::string& source, const std::string& key, double v, double lo, double hi,
-                 const std::string& unit, bool open_lo = false) {
-  const bool lo_ok = open_lo ? v > lo : v >= lo;
-  if (!std::isfinite(v) || !lo_ok || v > hi) {
-    throw ConfigError(source, key,
-                      std::string("expected a value in ") + (open_lo ? "(" : "[") + str(lo) + ", " + str(hi) + "]" +
-                          (unit.empty() ? "" : " " + unit) + ", found " + str(v));
-  }
-}
 
 // Effective disparity variance: matching noise plus the uniform rounding error of the quantizer.
 double disparity_variance(const RgbdNoiseConfig& c) {
@@ -85,7 +72,7 @@ void check_clean_depth(const ImageF32& depth) {
     const float z = depth.pixels[i];
     if (!(z >= 0.0f) || !std::isfinite(z)) {
       const int w = std::max(depth.width, 1);
-      throw std::invalid_argument("apply_rgbd_noise: clean depth must be finite and >= 0, found " + str(z) +
+      throw std::invalid_argument("apply_rgbd_noise: clean depth must be finite and >= 0, found " + format_number(z) +
                                   " at pixel (" + std::to_string(static_cast<int>(i) % w) + ", " +
                                   std::to_string(static_cast<int>(i) / w) + ")");
     }
@@ -197,7 +184,7 @@ void validate(const RgbdNoiseConfig& c, const std::string& source) {
   check_range(source, "min_depth_m", c.min_depth_m, 0.0, 1e3, "m");
   if (!std::isfinite(c.max_depth_m) || c.max_depth_m <= c.min_depth_m || c.max_depth_m > 1e4) {
     throw ConfigError(source, "max_depth_m",
-                      "expected a value in (min_depth_m = " + str(c.min_depth_m) + ", 1e4] m, found " + str(c.max_depth_m));
+                      "expected a value in (min_depth_m = " + format_number(c.min_depth_m) + ", 1e4] m, found " + format_number(c.max_depth_m));
   }
   check_range(source, "baseline_m", c.baseline_m, 0.0, 10.0, "m", true);
   check_range(source, "disparity_sigma_px", c.disparity_sigma_px, 0.0, 100.0, "px");

@@ -198,4 +198,21 @@ void add_car_shape(World& world, const Vec2& xy, double z0, double yaw, double h
             Surface{C::kCar, texture_seed + 1u, 0.15, 0.4});
 }
 
+MovingObject looping_person(std::vector<Vec2> path, double speed_mps, double start_s, double height_m) {
+  MovingObject m;
+  m.path = std::move(path);
+  m.speed_mps = speed_mps;
+  m.start_s = start_s;
+  m.loop = true;
+  m.height_m = height_m;
+  return m;
+}
+
+MovingObject looping_car(std::vector<Vec2> path, double speed_mps, double start_s) {
+  MovingObject m = looping_person(std::move(path), speed_mps, start_s, 1.5);
+  m.kind = MovingKind::kCar;
+  m.radius_m = 0.9;  // half width of a small car
+  return m;
+}
+
 }  // namespace navaid::simulation::scenarios

@@ -85,6 +85,10 @@ class SceneBuilder {
 };
 
 /// Parts of people and cars, shared by static props and moving objects.
+/// A person or car walking/driving `path` in a loop, starting at start_s (scenario traffic).
+MovingObject looping_person(std::vector<Vec2> path, double speed_mps, double start_s, double height_m);
+MovingObject looping_car(std::vector<Vec2> path, double speed_mps, double start_s);
+
 void add_person_shape(World& world, const Vec2& xy, double z0, double radius, double height, std::uint32_t texture_seed);
 void add_car_shape(World& world, const Vec2& xy, double z0, double yaw, double half_width, double height,
                    std::uint32_t texture_seed);

@@ -103,28 +103,16 @@ void build_route1(Scenario& s, Rng& rng) {
 
   // People on the sidewalks and crossing the street; traffic on both lanes.
   auto person = [&](std::vector<Vec2> path, double speed, double start) {
-    MovingObject m;
-    m.path = std::move(path);
-    m.speed_mps = speed;
-    m.start_s = start;
-    m.loop = true;
-    m.height_m = rng.uniform(1.55, 1.85);
-    s.moving.push_back(m);
+    s.moving.push_back(looping_person(std::move(path), speed, start, rng.uniform(1.55, 1.85)));
   };
   person({Vec2(200.0, 0.55), Vec2(20.0, 0.55)}, 1.3, 0.0);
   person({Vec2(30.0, -0.4), Vec2(230.0, -0.4)}, 1.0, 10.0);
   person({Vec2(0.7, 30.0), Vec2(0.7, 3.0)}, 1.2, 5.0);
   person({Vec2(120.0, 1.0), Vec2(120.0, -13.0)}, 1.1, 20.0);
-  for (double y : {-4.0, -7.5}) {
-    MovingObject car;
-    car.kind = MovingKind::kCar;
-    car.path = y < -5.0 ? std::vector<Vec2>{Vec2(265.0, y), Vec2(-25.0, y)} : std::vector<Vec2>{Vec2(-25.0, y), Vec2(265.0, y)};
-    car.speed_mps = 8.0;
-    car.loop = true;
-    car.radius_m = 0.9;
-    car.height_m = 1.5;
-    s.moving.push_back(car);
-  }
+  for (double y : {-4.0, -7.5})
+    s.moving.push_back(looping_car(
+        y < -5.0 ? std::vector<Vec2>{Vec2(265.0, y), Vec2(-25.0, y)} : std::vector<Vec2>{Vec2(-25.0, y), Vec2(265.0, y)},
+        8.0, 0.0));
 }
 
 // Route 2: from the Cultural Activities Center (0, 0) 300 m straight east to the residential
@@ -200,13 +188,7 @@ void build_route2(Scenario& s, Rng& rng) {
   // Pedestrians crossing the junctions on the crosswalks and walking along; cars turning through
   // the junctions (they cross the crosswalks) and traffic on the main road.
   auto person = [&](std::vector<Vec2> path, double speed, double start) {
-    MovingObject m;
-    m.path = std::move(path);
-    m.speed_mps = speed;
-    m.start_s = start;
-    m.loop = true;
-    m.height_m = rng.uniform(1.55, 1.85);
-    s.moving.push_back(m);
+    s.moving.push_back(looping_person(std::move(path), speed, start, rng.uniform(1.55, 1.85)));
   };
   for (double j : junctions) {
     person({Vec2(j + 14.0, 0.8), Vec2(j - 6.0, 0.8)}, 1.1, 0.1 * j);
@@ -214,15 +196,7 @@ void build_route2(Scenario& s, Rng& rng) {
   }
   person({Vec2(280.0, -0.9), Vec2(120.0, -0.9)}, 1.25, 0.0);
   auto car = [&](std::vector<Vec2> path, double speed, double start) {
-    MovingObject m;
-    m.kind = MovingKind::kCar;
-    m.path = std::move(path);
-    m.speed_mps = speed;
-    m.start_s = start;
-    m.loop = true;
-    m.radius_m = 0.9;
-    m.height_m = 1.5;
-    s.moving.push_back(m);
+    s.moving.push_back(looping_car(std::move(path), speed, start));
   };
   car({Vec2(junctions[0] + 4.0, 50.0), Vec2(junctions[0] + 4.0, -4.5)}, 5.0, 0.0);
   car({Vec2(junctions[1] + 4.0, -4.5), Vec2(junctions[1] + 4.0, 50.0)}, 5.0, 6.0);
