@@ -1,0 +1,169 @@
+// navaid eval: ATE (after 4-DOF / SE(3) / Sim(3) / no alignment) and RPE of an estimated TUM
+// trajectory against ground truth; eval.json, per-pose errors and a figure drawn by
+// experiments/figures/plot_eval.py. Definitions in docs/evaluation.md.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/experiments/trajectory_evaluation.hpp"
+#include "navaid/io/open_input.hpp"
+#include "navaid/io/tum_trajectory.hpp"
+#include "run_process.hpp"
+
+namespace navaid::cli {
+namespace fs = std::filesystem;
+namespace ex = navaid::experiments;
+namespace {
+
+constexpr const char* kPython = "/usr/bin/python3";  // Debian's, which has matplotlib (DESIGN.md §5)
+
+struct EvalArgs {
+  fs::path est, gt, out;
+  std::string align = "4dof";
+  std::size_t align_frames = 0;
+  double tolerance_s = 0.02;
+  std::vector<double> rpe_lengths;
+  std::vector<double> rpe_percent{10, 20, 30, 40, 50};
+  bool no_plot = false;
+};
+
+// A TUM file is read as a trajectory; a folder (navaid recording, EuRoC, TUM RGB-D) for its ground truth.
+std::vector<io::StampedPose> read_groundtruth(const fs::path& path) {
+  if (!fs::is_directory(path)) return io::read_tum_trajectory(path);
+  const io::Recording recording = io::read_input(path);
+  if (recording.groundtruth.empty()) throw IoError(path.string(), "has no ground truth to evaluate against");
+  std::vector<io::StampedPose> poses;
+  poses.reserve(recording.groundtruth.size());
+  for (const auto& g : recording.groundtruth) poses.push_back({g.t, g.T_W_B});
+  return poses;
+}
+
+nlohmann::ordered_json stats_json(const ex::ErrorStatistics& s) {
+  return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"std", s.std}, {"min", s.min}, {"max", s.max},
+          {"count", s.count}};
+}
+
+nlohmann::ordered_json evaluation_json(const EvalArgs& a, const ex::TrajectoryEvaluation& e) {
+  nlohmann::ordered_json j;
+  j["estimate"] = a.est.string();
+  j["groundtruth"] = a.gt.string();
+  j["association"] = {{"tolerance_s", a.tolerance_s}, {"estimate_poses", e.est_poses},
+                      {"groundtruth_poses", e.gt_poses}, {"matched", e.pairs.size()}};
+  const auto& T = e.ate.transform;
+  nlohmann::ordered_json rotation = nlohmann::ordered_json::array();
+  for (int r = 0; r < 3; ++r) rotation.push_back({T.R(r, 0), T.R(r, 1), T.R(r, 2)});
+  j["alignment"] = {{"mode", std::string(ex::to_string(e.ate.alignment))},
+                    {"frames", e.ate.align_frames},
+                    {"scale", T.scale},
+                    {"rotation", rotation},  // gt ~ scale * rotation * est + translation
+                    {"translation", {T.t.x(), T.t.y(), T.t.z()}}};
+  j["groundtruth_path_length_m"] = e.gt_path_length_m;
+  j["ate"] = {{"position_m", stats_json(e.ate.position)}, {"rotation_deg", stats_json(e.ate.rotation_deg)}};
+  j["rpe"] = nlohmann::ordered_json::array();
+  for (const auto& r : e.rpe) {
+    nlohmann::ordered_json x{{"length_m", r.length_m}, {"pairs", r.translation_errors.size()}};
+    if (!r.empty()) {
+      x["translation_m"] = stats_json(r.translation);
+      x["translation_percent"] = stats_json(r.translation_percent);
+      x["rotation_deg"] = stats_json(r.rotation_deg);
+    }
+    j["rpe"].push_back(x);
+  }
+  return j;
+}
+
+void write_per_pose(const fs::path& file, const ex::TrajectoryEvaluation& e) {
+  std::ofstream out(file);
+  if (!out) throw IoError(file.string(), "cannot write");
+  out << "t,gt_x,gt_y,gt_z,est_x,est_y,est_z,position_error_m,rotation_error_deg\n";
+  for (std::size_t i = 0; i < e.pairs.size(); ++i) {
+    const Vec3& g = e.pairs[i].gt.t;
+    const Vec3& s = e.ate.aligned[i].t;
+    out << fmt::format("{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.5f}\n", format_seconds(e.pairs[i].t_est),
+                       g.x(), g.y(), g.z(), s.x(), s.y(), s.z(), e.ate.position_errors[i],
+                       e.ate.rotation_errors_rad[i] * 180.0 / M_PI);
+  }
+  if (!out) throw IoError(file.string(), "write failed");
+}
+
+void run_eval(const EvalArgs& a) {
+  ex::EvaluationOptions options;
+  options.ate.alignment = *ex::alignment_mode_from_string(a.align);  // CLI11 has checked the name
+  options.ate.align_frames = a.align_frames;
+  if (!(a.tolerance_s > 0.0) || !std::isfinite(a.tolerance_s))
+    throw UsageError(fmt::format("--tolerance must be a positive number of seconds, got {}", a.tolerance_s));
+  options.tolerance = seconds_to_ns(a.tolerance_s);
+  options.rpe_lengths_m = a.rpe_lengths;
+  options.rpe_length_percent = a.rpe_percent;
+
+  const auto est = io::read_tum_trajectory(a.est);
+  const auto gt = read_groundtruth(a.gt);
+  const ex::TrajectoryEvaluation e = ex::evaluate_trajectory(est, gt, options);
+
+  std::cout << fmt::format("matched poses: {} of {} estimated ({} ground-truth poses, tolerance {} s)\n", e.pairs.size(),
+                           e.est_poses, e.gt_poses, a.tolerance_s);
+  std::cout << fmt::format("alignment: {} on {} poses, scale {:.6f}\n", ex::to_string(e.ate.alignment),
+                           e.ate.align_frames, e.ate.transform.scale);
+  std::cout << fmt::format("ATE RMSE: {:.6f} m (mean {:.4f}, median {:.4f}, max {:.4f} m; rotation RMSE {:.3f} deg)\n",
+                           e.ate.position.rmse, e.ate.position.mean, e.ate.position.median, e.ate.position.max,
+                           e.ate.rotation_deg.rmse);
+  for (const auto& r : e.rpe) {
+    if (r.empty())
+      std::cout << fmt::format("RPE {:.2f} m: no sub-trajectory of that length\n", r.length_m);
+    else
+      std::cout << fmt::format("RPE {:.2f} m: translation mean {:.4f} m ({:.2f} %), rotation mean {:.3f} deg, {} pairs\n",
+                               r.length_m, r.translation.mean, r.translation_percent.mean, r.rotation_deg.mean,
+                               r.translation_errors.size());
+  }
+  if (a.out.empty()) return;
+
+  fs::create_directories(a.out);
+  const fs::path json_file = a.out / "eval.json", csv_file = a.out / "eval.csv", png_file = a.out / "eval.png";
+  {
+    std::ofstream out(json_file);
+    out << evaluation_json(a, e).dump(2) << "\n";
+    if (!out) throw IoError(json_file.string(), "cannot write");
+  }
+  write_per_pose(csv_file, e);
+  std::cout << "wrote " << json_file.string() << ", " << csv_file.string();
+  if (!a.no_plot) {
+    const std::vector<std::string> argv{kPython, figures_dir() + "/plot_eval.py", csv_file.string(), "--out",
+                                        png_file.string(), "--title",
+                                        fmt::format("{}: ATE RMSE {:.4f} m ({})", a.est.filename().string(),
+                                                    e.ate.position.rmse, ex::to_string(e.ate.alignment))};
+    spdlog::info("running {}", fmt::join(argv, " "));
+    const int rc = run_process(argv);
+    if (rc != 0) throw Error(fmt::format("the plotting script failed (exit status {}); command: {}", rc, fmt::join(argv, " ")));
+    std::cout << ", " << png_file.string();
+  }
+  std::cout << "\n";
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("eval", "Trajectory error (ATE, RPE) of an estimate against ground truth");
+  auto a = std::make_shared<EvalArgs>();
+  cmd->add_option("--est", a->est, "Estimated trajectory (TUM file)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--gt", a->gt, "Ground truth: TUM file, or a recording folder with ground truth")
+      ->required()
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--align", a->align, "Alignment before ATE (posyaw = 4dof)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"4dof", "posyaw", "se3", "sim3", "none"}));
+  cmd->add_option("--align-frames", a->align_frames, "Align on the first N matched poses (0 = all)")->capture_default_str();
+  cmd->add_option("--tolerance", a->tolerance_s, "Association tolerance [s]")->capture_default_str();
+  cmd->add_option("--rpe-lengths", a->rpe_lengths, "RPE sub-trajectory lengths [m]")->delimiter(',');
+  cmd->add_option("--rpe-percent", a->rpe_percent, "RPE lengths as % of the ground-truth path")->capture_default_str()->delimiter(',');
+  cmd->add_option("--out", a->out, "Folder for eval.json, eval.csv and eval.png");
+  cmd->add_flag("--no-plot", a->no_plot, "Do not draw eval.png");
+  cmd->callback([a] { run_eval(*a); });
+}
+
+}  // namespace navaid::cli
