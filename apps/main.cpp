@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   navaid::cli::add_simulate_command(app);
   navaid::cli::add_scenario_map_command(app);
   navaid::cli::add_eval_command(app);
+  navaid::cli::add_ablate_command(app);
   app.parse_complete_callback([&] {
     spdlog::set_level(verbosity >= 2 ? spdlog::level::debug
                       : verbosity == 1 ? spdlog::level::info

@@ -5,8 +5,12 @@
 
 namespace navaid::cli {
 
-/// Returns the exit status; throws navaid::Error when the program cannot be started.
-int run_process(const std::vector<std::string>& argv);
+/// Returns the exit status; throws navaid::Error when the program cannot be started. With a
+/// log file, the program's stdout and stderr go there (created or truncated).
+int run_process(const std::vector<std::string>& argv, const std::string& log_file = {});
+
+/// This program's own executable, for running navaid subcommands as child processes.
+std::string self_executable();
 
 /// The folder holding the plotting scripts: $NAVAID_FIGURES_DIR, else the source tree's
 /// experiments/figures, else the installed share/navaid/figures.
