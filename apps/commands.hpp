@@ -9,6 +9,7 @@ void add_convert_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_scenario_map_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_ablate_command(CLI::App& app);
 

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   navaid::cli::add_plot_command(app);
   navaid::cli::add_simulate_command(app);
   navaid::cli::add_scenario_map_command(app);
+  navaid::cli::add_run_command(app);
   navaid::cli::add_eval_command(app);
   navaid::cli::add_ablate_command(app);
   app.parse_complete_callback([&] {

@@ -25,6 +25,8 @@ void validate(const FeatureSimConfig& c) {
   require(c.max_features_per_frame >= 1, "max_per_frame", "must be >= 1");
   require(c.grid_cols >= 1 && c.grid_rows >= 1, "grid", "needs >= 1 column and row");
   require(c.image_border_px >= 0, "image_border", "must be >= 0");
+  require(!c.disparity_sigma_px || (*c.disparity_sigma_px >= 0 && std::isfinite(*c.disparity_sigma_px)),
+          "disparity_sigma", "must be >= 0");
 }
 
 std::vector<Landmark> generate_landmarks(const RayCaster& world, const WalkerTrajectory& path,
@@ -92,6 +94,7 @@ FeatureFrame FeatureObserver::observe(Timestamp t, const SE3& T_W_C, std::mt1993
   const auto& calib = camera_->calibration();
   const bool has_depth = calib.depth_max_m > 0 && calib.depth_baseline_m > 0;
   const double fb = calib.fx * calib.depth_baseline_m;
+  const double sigma_d = config_.disparity_sigma_px.value_or(calib.depth_disparity_sigma_px);
   std::normal_distribution<double> normal(0.0, 1.0);
   const int cells = config_.grid_cols * config_.grid_rows;
   std::vector<int> cell_count(static_cast<std::size_t>(cells), 0);
@@ -123,7 +126,7 @@ FeatureFrame FeatureObserver::observe(Timestamp t, const SE3& T_W_C, std::mt1993
       if (!camera_->in_image(obs.uv)) continue;
       const double z = c.p_C.z();
       if (has_depth && z >= calib.depth_min_m && z <= calib.depth_max_m) {
-        const double disparity = fb / z + calib.depth_disparity_sigma_px * normal(rng);
+        const double disparity = fb / z + sigma_d * normal(rng);
         if (disparity > 0) obs.depth_m = fb / disparity;
       }
       ++cell_count[cell];

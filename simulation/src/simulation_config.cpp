@@ -136,6 +136,8 @@ void read_features(const Config& c, SimulationConfig& s) {
   f.max_observation_range_m = c.get_double("features.max_observation_range", f.max_observation_range_m, {0.5, 200});
   f.pixel_sigma_px = c.get_double("features.pixel_sigma", f.pixel_sigma_px, {0, 20});
   if (!c.get_bool("sensor.noise", true)) f.pixel_sigma_px = 0.0;
+  // Same switches as the image mode's depth noise; the calibration keeps the sensor's sigma.
+  if (!s.rgbd_noise.noise || !s.rgbd_noise.depth_noise) f.disparity_sigma_px = 0.0;
   f.max_features_per_frame = static_cast<int>(c.get_int("features.max_per_frame", f.max_features_per_frame, 1, 5000));
   validate(f);
 }

@@ -181,6 +181,23 @@ TEST(FeatureSimulator, DepthNoiseFollowsTheDisparityModel) {
   EXPECT_NEAR(var, 1.0, 4.0 * std::sqrt(2.0 / n));
 }
 
+TEST(FeatureSimulator, DisparityNoiseCanBeSwitchedOffWhileTheCalibrationKeepsItsSigma) {
+  Fixture f(0.1);
+  FeatureSimConfig config;
+  config.disparity_sigma_px = 0.0;
+  const auto landmarks = generate_landmarks(f.world, f.path, config, 1);
+  FeatureObserver observer(f.world, *f.camera, landmarks, config);
+  std::mt19937_64 rng(3);
+  const SE3 T_W_C = f.T_W_C(2.0);
+  std::size_t with_depth = 0;
+  for (const auto& o : observer.observe(0, T_W_C, rng).features)
+    if (o.depth_m) {
+      EXPECT_NEAR(*o.depth_m, (T_W_C.inverse() * landmarks[o.track_id].p_W).z(), 1e-9);
+      ++with_depth;
+    }
+  EXPECT_GT(with_depth, 10u);
+}
+
 TEST(FeatureSimulator, RejectsBadConfigurationNamingTheKey) {
   FeatureSimConfig c;
   c.max_features_per_frame = 0;

@@ -8,6 +8,7 @@
 // Track persistence mimics a KLT front end: landmarks seen in the previous frame are kept first,
 // then new ones fill empty cells of a grid over the image, up to max_features_per_frame.
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct FeatureSimConfig {
   int max_features_per_frame = 150;  ///< >= 1
   int grid_cols = 8, grid_rows = 6;  ///< new tracks go to emptier cells first
   double image_border_px = 5.0;      ///< observations closer to the border are dropped
+  /// Disparity noise of the depth measurements [px]; unset: the camera's depth_disparity_sigma_px
+  /// (0 = exact depths, while the calibration keeps the sensor's sigma for the estimator).
+  std::optional<double> disparity_sigma_px;
 };
 
 /// Throws ConfigError naming the first bad key ("features.<name>").

@@ -1,0 +1,88 @@
+#pragma once
+// Settings of the sliding-window estimator, read from a navaid::Config under the `estimator.`
+// prefix. Every key, its default and its range is documented in docs/estimator.md ("Sliding
+// window"); every switch is an ablation. Values that come from the rig (focal length, depth
+// baseline and disparity noise) are taken from the calibration unless a key overrides them.
+#include <string>
+
+#include "navaid/core/config.hpp"
+
+namespace navaid::estimation {
+
+enum class LossKind { kCauchy, kHuber, kNone };
+enum class LinearSolverKind { kDenseSchur, kSparseSchur, kSparseNormalCholesky };
+/// What happens to the inverse depth of a far feature (anchor depth > far_threshold_m).
+enum class FarFeaturePolicy { kFree, kFixed };
+/// How the newest state's covariance is computed: Schur complement of the window's information
+/// (fast), ceres::Covariance (SPARSE_QR; reference, slower), or not at all.
+enum class CovarianceMethod { kSchur, kCeres, kOff };
+
+struct EstimatorConfig {
+  int window_size = 10;  ///< keyframes in the window
+
+  // Factor switches.
+  bool use_imu = true;
+  bool use_reprojection = true;
+  bool use_inverse_depth = true;
+  bool use_depth_3d = true;
+  bool use_gps = false;
+  bool use_mag = false;
+  /// false: ignore every depth measurement (VIO): no depth factors, inverse depths triangulated.
+  bool use_depth = true;
+
+  // Features.
+  double far_threshold_m = 3.0;
+  FarFeaturePolicy far_policy = FarFeaturePolicy::kFree;
+  double pixel_sigma_px = 1.5;
+  /// Below this many features with usable visual factors the frame is IMU-only.
+  int min_visual_features = 8;
+  /// After marginalizing a track's anchor keyframe, keep its remaining observations re-anchored
+  /// (VINS-Mono; they also live on in the prior) instead of restarting the track. Restarting
+  /// avoids that reuse but measured less accurate and no more consistent (docs/estimator.md).
+  bool reuse_marginalized_tracks = true;
+  /// Depth noise: 0 = the calibration's depth_disparity_sigma_px / depth_baseline_m.
+  double disparity_sigma_px = 0;
+  double depth_baseline_m = 0;
+
+  // Keyframes.
+  double keyframe_parallax_px = 10.0;  ///< mean parallax to the last keyframe
+  int keyframe_min_tracked = 30;       ///< fewer common tracks than this: keyframe (track loss)
+  double keyframe_max_interval_s = 1.0;
+
+  // Robust loss on visual factors (scale in standard deviations).
+  LossKind loss = LossKind::kCauchy;
+  double loss_scale = 1.0;
+
+  // Solver.
+  LinearSolverKind linear_solver = LinearSolverKind::kDenseSchur;
+  int max_iterations = 8;
+  double max_solver_time_s = 0;  ///< 0: no limit (a limit makes results depend on the machine)
+
+  bool marginalization = true;
+  CovarianceMethod covariance_method = CovarianceMethod::kSchur;
+
+  // Initialization (the recording starts standing still).
+  double still_duration_s = 0.5;
+  double init_sigma_roll_pitch_rad = 0.01;
+  double init_sigma_velocity = 0.02;   ///< [m/s]
+  double init_sigma_gyro_bias = 0.01;  ///< [rad/s]
+  double init_sigma_accel_bias = 0.1;  ///< [m/s^2]
+
+  // GPS (factors.gps): a fix joins the frame within this time of it; Huber threshold [sigma].
+  double gps_max_time_offset_s = 0.02;
+  double gps_huber_threshold = 2.0;
+  /// Correlation time of the fix errors (multipath) for the registration's covariance [s].
+  double gps_correlation_time_s = 30.0;
+
+  /// IMU-only for longer than this: mode "lost".
+  double lost_after_s = 2.0;
+};
+
+/// Reads `estimator.*` (defaults above for absent keys); ConfigError names the key and its range.
+EstimatorConfig read_estimator_config(const Config& config);
+
+std::string to_string(LossKind kind);
+std::string to_string(LinearSolverKind kind);
+std::string to_string(FarFeaturePolicy policy);
+
+}  // namespace navaid::estimation

@@ -1,0 +1,60 @@
+#pragma once
+// The feature tracks of the sliding window: for each track id, its observations in the window's
+// frames (oldest first; the first is the anchor, where the inverse depth is defined) and its
+// inverse depth. Ordered containers only, so iteration (and hence the estimator) is deterministic.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace navaid::estimation {
+
+struct TrackObservation {
+  std::uint64_t frame_id = 0;
+  Eigen::Vector2d m = Eigen::Vector2d::Zero();   ///< undistorted normalized coordinates (x/z, y/z)
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();  ///< measured pixel (parallax)
+  std::optional<double> depth_m;                 ///< measured depth along the optical axis
+};
+
+struct FeatureTrack {
+  std::uint64_t id = 0;
+  std::vector<TrackObservation> observations;  ///< increasing frame_id; front() is the anchor
+  double inverse_depth = 0;                    ///< lambda = 1 / z in the anchor camera [1/m]
+  bool initialized = false;                    ///< inverse_depth holds an estimate
+
+  const TrackObservation& anchor() const { return observations.front(); }
+};
+
+class FeatureTrackStore {
+ public:
+  /// Adds the observations of a new frame; frame ids must increase from call to call (Error otherwise).
+  void add_frame(std::uint64_t frame_id, const std::vector<std::pair<std::uint64_t, TrackObservation>>& observations);
+
+  /// Erases the frame's observations; tracks left without observations disappear. Tracks whose
+  /// anchor was this frame now have their next observation as anchor: their inverse depth is
+  /// no longer valid unless the caller re-expresses it (see anchored_at()).
+  void remove_frame(std::uint64_t frame_id);
+
+  /// Ids of the tracks whose anchor is `frame_id`.
+  std::vector<std::uint64_t> anchored_at(std::uint64_t frame_id) const;
+
+  /// Mean pixel displacement of the tracks seen in both frames, and how many there are
+  /// (0 and 0 when none).
+  double mean_parallax_px(std::uint64_t frame_a, std::uint64_t frame_b, int* common = nullptr) const;
+
+  /// Removes a track (e.g. after a failed triangulation or a negative depth).
+  void erase(std::uint64_t track_id) { tracks_.erase(track_id); }
+
+  std::map<std::uint64_t, FeatureTrack>& tracks() { return tracks_; }
+  const std::map<std::uint64_t, FeatureTrack>& tracks() const { return tracks_; }
+
+ private:
+  static const TrackObservation* find(const FeatureTrack& track, std::uint64_t frame_id);
+
+  std::map<std::uint64_t, FeatureTrack> tracks_;
+  std::optional<std::uint64_t> last_frame_;
+};
+
+}  // namespace navaid::estimation

@@ -1,0 +1,93 @@
+#pragma once
+// Sliding-window visual-inertial estimator on feature-level input (W-ROMA RGBD-VIO §V-B,
+// VINS-Mono's window management). docs/estimator.md, "Sliding window", says what it does, step
+// by step; the short version:
+//
+//  - Initialization: the recording starts standing still. At the first feature frame with
+//    still_duration_s of IMU data before it, gravity comes from the mean accelerometer, velocity
+//    and biases are zero and yaw is 0: the estimate's W frame differs from any ground-truth world
+//    frame by a 4-DOF transform (yaw + translation). (A full visual-inertial initialization, which
+//    does not need a still start, is a later issue.)
+//  - Every feature frame gets a state (pose, velocity, biases) propagated by IMU preintegration
+//    from the newest keyframe, and the window (keyframes + this frame) is solved by Ceres. The
+//    frame becomes a keyframe when the mean parallax to the last keyframe reaches the threshold,
+//    when too few tracks are shared with it, or after keyframe_max_interval_s; otherwise it is
+//    dropped after its solve (VINS drops the second-newest non-keyframe the same way).
+//  - When the window holds more than window_size keyframes the oldest is marginalized into a prior
+//    (Marginalizer), or, with marginalization off, dropped with a tight prior holding the gauge on
+//    the new oldest keyframe.
+//  - GPS (factors.gps): fixes are registered against the VIO track (eLabrador eq. 6-7,
+//    gps_registration.hpp) to initialize T_ENU_W; from then on T_ENU_W is a window block and each
+//    fix a GpsPositionFactor on the frame taken with it ("joint").
+//  - Output: a StateEstimate for every feature frame, with the covariance of the newest state (and
+//    of T_ENU_W) from the window's information (prior included), in StateEstimate's parametrization.
+//
+// Events must come in time order (io::SensorEventStream). A frame is processed once the IMU has
+// passed its time (the IMU sample after it is needed to interpolate), so estimates come out with
+// a delay of one IMU sample. Single-threaded and deterministic: the same events and configuration
+// give the same estimates bit for bit.
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "navaid/core/calibration.hpp"
+#include "navaid/core/messages.hpp"
+#include "navaid/core/state_estimate.hpp"
+#include "navaid/estimation/estimator_config.hpp"
+
+namespace navaid::estimation {
+
+struct EstimatorStatistics {
+  std::size_t frames = 0;            ///< feature frames estimated (every mode)
+  std::size_t keyframes = 0;         ///< frames kept as keyframes
+  std::size_t solves = 0;
+  std::size_t marginalizations = 0;
+  std::size_t marginalization_failures = 0;  ///< prior dropped, gauge pinned instead
+  std::size_t gps_registrations = 0;         ///< 1 once T_ENU_W was initialized from the fixes
+  std::size_t covariance_failures = 0;  ///< covariance could not be computed (previous one inflated)
+  std::size_t features_in_last_solve = 0;
+  std::size_t depth_features_in_last_solve = 0;
+};
+
+class SlidingWindowEstimator {
+ public:
+  /// Needs the rig's camera `camera_name` (the first camera when empty) and IMU calibration;
+  /// throws ConfigError when either is missing or unusable, when depth factors are on and the
+  /// camera has no depth noise model (baseline, disparity sigma) and the config gives none, or
+  /// when GPS factors are on without the geodetic origin of the ENU frame.
+  SlidingWindowEstimator(const RigCalibration& rig, const EstimatorConfig& config,
+                         const std::string& camera_name = {},
+                         const std::optional<GeodeticOrigin>& origin = std::nullopt);
+  ~SlidingWindowEstimator();
+  /// Copies the whole window (the benchmark re-solves one window many times).
+  SlidingWindowEstimator(const SlidingWindowEstimator& other);
+  SlidingWindowEstimator& operator=(const SlidingWindowEstimator&) = delete;
+  SlidingWindowEstimator(SlidingWindowEstimator&&) noexcept;
+  SlidingWindowEstimator& operator=(SlidingWindowEstimator&&) noexcept;
+
+  /// Feeds one event and returns the estimates that became ready (feature frames whose time the
+  /// IMU has now passed). GPS fixes are used when the gps factor is on; magnetometer samples are
+  /// accepted and not used yet; an RgbdFrame
+  /// throws Error (the image front end does not exist yet). Throws Error on events out of time
+  /// order or IMU samples without gyro data.
+  std::vector<StateEstimate> process(const SensorEvent& event);
+  /// Estimates for frames still waiting for IMU data at the end of a recording: no IMU data covers
+  /// them, so they repeat the last estimate's state, in mode "lost".
+  std::vector<StateEstimate> finish();
+
+  /// Solves the current window again (benchmarks, tests); returns the number of visual features used.
+  std::size_t optimize();
+
+  const EstimatorConfig& config() const;
+  const EstimatorStatistics& statistics() const;
+  /// Keyframes currently in the window.
+  std::size_t window_keyframes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace navaid::estimation

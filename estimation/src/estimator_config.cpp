@@ -1,0 +1,112 @@
+#include "navaid/estimation/estimator_config.hpp"
+
+#include <limits>
+
+#include "navaid/core/errors.hpp"
+
+namespace navaid::estimation {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+template <class Enum, std::size_t N>
+Enum parse_enum(const std::string& name, const char* const (&names)[N], const Enum (&values)[N]) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (name == names[i]) return values[i];
+  throw Error("unreachable: Config::get_string validated '" + name + "'");
+}
+
+}  // namespace
+
+EstimatorConfig read_estimator_config(const Config& c) {
+  EstimatorConfig e;
+  e.window_size = static_cast<int>(c.get_int("estimator.window_size", e.window_size, 2, 100));
+
+  e.use_imu = c.get_bool("estimator.factors.imu", e.use_imu);
+  e.use_reprojection = c.get_bool("estimator.factors.reprojection", e.use_reprojection);
+  e.use_inverse_depth = c.get_bool("estimator.factors.inverse_depth", e.use_inverse_depth);
+  e.use_depth_3d = c.get_bool("estimator.factors.depth_3d", e.use_depth_3d);
+  e.use_gps = c.get_bool("estimator.factors.gps", e.use_gps);
+  e.use_mag = c.get_bool("estimator.factors.mag", e.use_mag);
+  e.use_depth = c.get_bool("estimator.depth.enabled", e.use_depth);
+  if (e.use_mag)
+    throw ConfigError(c.origin("estimator.factors.mag"), "estimator.factors.mag",
+                      "the magnetometer factor is not in the sliding window yet (issue 4): must be false");
+  e.gps_max_time_offset_s = c.get_double("estimator.gps.max_time_offset", e.gps_max_time_offset_s, {0, 1});
+  e.gps_huber_threshold = c.get_double("estimator.gps.huber_threshold", e.gps_huber_threshold, {0.1, 100});
+  e.gps_correlation_time_s = c.get_double("estimator.gps.correlation_time", e.gps_correlation_time_s, {0, 1e4});
+
+  e.far_threshold_m = c.get_double("estimator.features.far_threshold", e.far_threshold_m, {0.1, 1000});
+  static const char* const policy_names[] = {"free", "fixed"};
+  static const FarFeaturePolicy policies[] = {FarFeaturePolicy::kFree, FarFeaturePolicy::kFixed};
+  e.far_policy = parse_enum(c.get_string("estimator.features.far_policy", "free", {"free", "fixed"}), policy_names,
+                            policies);
+  e.pixel_sigma_px = c.get_double("estimator.features.pixel_sigma", e.pixel_sigma_px, {1e-3, 100});
+  e.min_visual_features =
+      static_cast<int>(c.get_int("estimator.features.min_visual", e.min_visual_features, 0, 10000));
+  e.reuse_marginalized_tracks =
+      c.get_bool("estimator.features.reuse_marginalized_tracks", e.reuse_marginalized_tracks);
+  e.disparity_sigma_px = c.get_double("estimator.depth.disparity_sigma", e.disparity_sigma_px, {0, 100});
+  e.depth_baseline_m = c.get_double("estimator.depth.baseline", e.depth_baseline_m, {0, 10});
+
+  e.keyframe_parallax_px = c.get_double("estimator.keyframe.parallax", e.keyframe_parallax_px, {0, 1000});
+  e.keyframe_min_tracked =
+      static_cast<int>(c.get_int("estimator.keyframe.min_tracked", e.keyframe_min_tracked, 0, 10000));
+  e.keyframe_max_interval_s =
+      c.get_double("estimator.keyframe.max_interval", e.keyframe_max_interval_s, {0.01, 100});
+
+  static const char* const loss_names[] = {"cauchy", "huber", "none"};
+  static const LossKind losses[] = {LossKind::kCauchy, LossKind::kHuber, LossKind::kNone};
+  e.loss = parse_enum(c.get_string("estimator.loss.type", "cauchy", {"cauchy", "huber", "none"}), loss_names, losses);
+  e.loss_scale = c.get_double("estimator.loss.scale", e.loss_scale, {1e-3, 1e3});
+
+  static const char* const solver_names[] = {"dense_schur", "sparse_schur", "sparse_normal_cholesky"};
+  static const LinearSolverKind solvers[] = {LinearSolverKind::kDenseSchur, LinearSolverKind::kSparseSchur,
+                                             LinearSolverKind::kSparseNormalCholesky};
+  e.linear_solver = parse_enum(
+      c.get_string("estimator.solver.linear_solver", "dense_schur",
+                   {"dense_schur", "sparse_schur", "sparse_normal_cholesky"}),
+      solver_names, solvers);
+  e.max_iterations = static_cast<int>(c.get_int("estimator.solver.max_iterations", e.max_iterations, 1, 1000));
+  e.max_solver_time_s = c.get_double("estimator.solver.max_time", e.max_solver_time_s, {0, 60});
+
+  e.marginalization = c.get_bool("estimator.marginalization", e.marginalization);
+  static const char* const cov_names[] = {"schur", "ceres", "off"};
+  static const CovarianceMethod covs[] = {CovarianceMethod::kSchur, CovarianceMethod::kCeres, CovarianceMethod::kOff};
+  e.covariance_method =
+      parse_enum(c.get_string("estimator.covariance", "schur", {"schur", "ceres", "off"}), cov_names, covs);
+
+  e.still_duration_s = c.get_double("estimator.initialization.still_duration", e.still_duration_s, {0.05, 60});
+  e.init_sigma_roll_pitch_rad =
+      c.get_double("estimator.initialization.sigma_roll_pitch", e.init_sigma_roll_pitch_rad, {1e-6, 1});
+  e.init_sigma_velocity = c.get_double("estimator.initialization.sigma_velocity", e.init_sigma_velocity, {1e-6, 10});
+  e.init_sigma_gyro_bias =
+      c.get_double("estimator.initialization.sigma_gyro_bias", e.init_sigma_gyro_bias, {1e-8, 1});
+  e.init_sigma_accel_bias =
+      c.get_double("estimator.initialization.sigma_accel_bias", e.init_sigma_accel_bias, {1e-8, 10});
+  e.lost_after_s = c.get_double("estimator.lost_after", e.lost_after_s, {0, kInf});
+  return e;
+}
+
+std::string to_string(LossKind kind) {
+  switch (kind) {
+    case LossKind::kCauchy: return "cauchy";
+    case LossKind::kHuber: return "huber";
+    case LossKind::kNone: return "none";
+  }
+  return "?";
+}
+
+std::string to_string(LinearSolverKind kind) {
+  switch (kind) {
+    case LinearSolverKind::kDenseSchur: return "dense_schur";
+    case LinearSolverKind::kSparseSchur: return "sparse_schur";
+    case LinearSolverKind::kSparseNormalCholesky: return "sparse_normal_cholesky";
+  }
+  return "?";
+}
+
+std::string to_string(FarFeaturePolicy policy) { return policy == FarFeaturePolicy::kFree ? "free" : "fixed"; }
+
+}  // namespace navaid::estimation

@@ -1,0 +1,337 @@
+// The sliding-window estimator end to end on short simulated feature-level walks (lab-walk-1,
+// hand mount): accuracy, noise-free exactness, determinism, modes, ablation switches, covariance.
+#include "navaid/estimation/sliding_window_estimator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <Eigen/Eigenvalues>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/core/geodesy.hpp"
+#include "navaid/io/event_stream.hpp"
+#include "navaid/io/navaid_recording.hpp"
+#include "navaid/simulation/simulator.hpp"
+#include "test_support.hpp"
+
+namespace navaid::estimation {
+namespace {
+
+// A 15 Hz camera and 80 features per frame keep each run to about a second.
+io::Recording simulate_walk(const std::string& name, const std::vector<std::string>& extra) {
+  testing::ScratchDir dir(name);
+  std::vector<std::string> overrides = {"scenario=lab-walk-1", "mount=hand", "simulation.mode=features",
+                                        "duration=12", "seed=3", "sensor.camera.rate=15",
+                                        "features.max_per_frame=80"};
+  overrides.insert(overrides.end(), extra.begin(), extra.end());
+  const Config c = Config::parse("{}", "<test>", overrides);
+  const auto scenario = simulation::make_scenario(simulation::read_scenario_name(c));
+  const auto sim = simulation::read_simulation_config(c, scenario);
+  c.reject_unknown_keys();
+  simulation::SimulateOptions options;
+  options.threads = 1;
+  simulation::simulate(scenario, sim, dir.path(), options);
+  return io::read_navaid_recording(dir.path());
+}
+
+const io::Recording& noisy_walk() {
+  static const io::Recording rec = simulate_walk("swe_noisy", {});
+  return rec;
+}
+
+// Shorter, for the tests that run the estimator many times.
+const io::Recording& short_walk() {
+  static const io::Recording rec = simulate_walk("swe_short", {"duration=6"});
+  return rec;
+}
+
+std::vector<StateEstimate> run(const io::Recording& rec, const std::vector<std::string>& overrides = {}) {
+  const Config c = Config::parse("{}", "<test>", overrides);
+  SlidingWindowEstimator estimator(rec.calibration, read_estimator_config(c));
+  c.reject_unknown_keys();
+  std::vector<StateEstimate> out;
+  io::SensorEventStream stream(rec);
+  while (auto e = stream.next())
+    for (auto& s : estimator.process(*e)) out.push_back(s);
+  for (auto& s : estimator.finish()) out.push_back(s);
+  return out;
+}
+
+SE3 groundtruth_at(const std::vector<GroundTruthState>& gt, Timestamp t) {
+  auto it = std::lower_bound(gt.begin(), gt.end(), t, [](const GroundTruthState& s, Timestamp x) { return s.t < x; });
+  if (it == gt.end()) return gt.back().T_W_B;
+  if (it->t == t || it == gt.begin()) return it->T_W_B;
+  const auto& a = *std::prev(it);
+  return interpolate(a.T_W_B, it->T_W_B, static_cast<double>(t - a.t) / static_cast<double>(it->t - a.t));
+}
+
+struct Errors {
+  double rmse_m = 0;     // position error after aligning the first estimate (4-DOF) onto ground truth
+  double max_m = 0;
+  double path_m = 0;
+  double mean_nees = 0;  // position NEES with the estimate's covariance (3 for a consistent estimator)
+  std::size_t poses = 0;
+};
+
+// The estimator's W is gravity-aligned with yaw 0 and the origin at the first state: a 4-DOF
+// transform from the ground truth's world, fixed by the first estimate. Its covariance is
+// relative to that same first state, so this is also the frame in which the NEES is meaningful.
+Errors start_aligned_errors(const std::vector<StateEstimate>& est, const std::vector<GroundTruthState>& gt) {
+  Errors r;
+  const StateEstimate* first = nullptr;
+  double yaw = 0;
+  Vec3 t = Vec3::Zero();
+  double sq = 0, nees = 0;
+  Vec3 last_gt = Vec3::Zero();
+  for (const auto& s : est) {
+    if (s.mode == EstimatorMode::kInitializing) continue;
+    const SE3 g = groundtruth_at(gt, s.t);
+    if (!first) {
+      first = &s;
+      yaw = yaw_of(g.q) - yaw_of(s.T_W_B.q);
+      t = g.t - Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * s.T_W_B.t;
+      last_gt = g.t;
+    }
+    const Mat3 Rz = Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotationMatrix();
+    const Vec3 e = s.T_W_B.t - Rz.transpose() * (g.t - t);  // in the estimate's W
+    sq += e.squaredNorm();
+    r.max_m = std::max(r.max_m, e.norm());
+    nees += e.dot(s.covariance.block<3, 3>(3, 3).ldlt().solve(e));
+    r.path_m += (g.t - last_gt).norm();
+    last_gt = g.t;
+    ++r.poses;
+  }
+  if (r.poses > 0) {
+    r.rmse_m = std::sqrt(sq / static_cast<double>(r.poses));
+    r.mean_nees = nees / static_cast<double>(r.poses);
+  }
+  return r;
+}
+
+std::map<EstimatorMode, std::size_t> mode_counts(const std::vector<StateEstimate>& est) {
+  std::map<EstimatorMode, std::size_t> m;
+  for (const auto& s : est) ++m[s.mode];
+  return m;
+}
+
+TEST(SlidingWindowEstimator, RgbdVioOnANoisyWalkStaysWithinHalfAPercentOfThePath) {
+  const auto& rec = noisy_walk();
+  const auto est = run(rec);
+  ASSERT_EQ(est.size(), rec.features.size()) << "one estimate per feature frame";
+  const Errors e = start_aligned_errors(est, rec.groundtruth);
+  ASSERT_GT(e.path_m, 8.0);
+  EXPECT_LT(e.rmse_m, 0.005 * e.path_m) << "rmse " << e.rmse_m << " m over " << e.path_m << " m";
+  const auto modes = mode_counts(est);
+  EXPECT_GT(modes.at(EstimatorMode::kInitializing), 0u);
+  EXPECT_GT(modes.at(EstimatorMode::kRgbdVio), est.size() * 8 / 10);
+  EXPECT_EQ(modes.count(EstimatorMode::kLost), 0u);
+  RecordProperty("rmse_mm", static_cast<int>(std::lround(e.rmse_m * 1e3)));
+}
+
+TEST(SlidingWindowEstimator, CovarianceIsConsistentWithTheError) {
+  // Mean position NEES over one run: 3 for a consistent estimator. Errors along a run are strongly
+  // correlated, so the bound is loose (a factor 3 either way); the Monte-Carlo bound is the
+  // experiments room's job.
+  const auto& rec = noisy_walk();
+  const Errors e = start_aligned_errors(run(rec), rec.groundtruth);
+  EXPECT_GT(e.mean_nees, 1.0);
+  EXPECT_LT(e.mean_nees, 9.0);
+  RecordProperty("mean_position_nees_x100", static_cast<int>(std::lround(e.mean_nees * 100)));
+}
+
+TEST(SlidingWindowEstimator, NoiseFreeSensorsGiveNearlyExactPoses) {
+  // sensor.noise=false leaves the feature simulator's disparity noise on: switch it off by its
+  // sigma, and give the estimator a depth noise model by key instead.
+  const io::Recording rec =
+      simulate_walk("swe_exact", {"sensor.noise=false", "sensor.depth.disparity_sigma=0", "duration=8"});
+  const auto est = run(rec, {"estimator.depth.disparity_sigma=0.1"});
+  const Errors e = start_aligned_errors(est, rec.groundtruth);
+  ASSERT_GT(e.poses, 80u);
+  EXPECT_LT(e.max_m, 1e-3) << "rmse " << e.rmse_m;
+  RecordProperty("max_error_um", static_cast<int>(std::lround(e.max_m * 1e6)));
+}
+
+TEST(SlidingWindowEstimator, IsDeterministic) {
+  const auto& rec = short_walk();
+  const auto a = run(rec, {"estimator.covariance=off"});
+  const auto b = run(rec, {"estimator.covariance=off"});
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].T_W_B.t, b[i].T_W_B.t) << i;
+    ASSERT_EQ(a[i].T_W_B.q.coeffs(), b[i].T_W_B.q.coeffs()) << i;
+    ASSERT_EQ(a[i].v_W, b[i].v_W) << i;
+    ASSERT_EQ(a[i].mode, b[i].mode) << i;
+  }
+}
+
+TEST(SlidingWindowEstimator, SchurCovarianceEqualsCeresCovariance) {
+  const auto& rec = short_walk();
+  const auto a = run(rec, {"estimator.covariance=schur"});
+  const auto b = run(rec, {"estimator.covariance=ceres"});
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].mode == EstimatorMode::kInitializing) continue;
+    const Mat15& A = a[i].covariance;
+    EXPECT_LE((A - b[i].covariance).norm(), 1e-6 * A.norm()) << i;
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Mat15>(A).eigenvalues().minCoeff(), 0.0) << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 50u);
+}
+
+TEST(SlidingWindowEstimator, VioWithoutDepthStillTracks) {
+  const auto& rec = noisy_walk();
+  const auto est = run(rec, {"estimator.depth.enabled=false"});
+  const auto modes = mode_counts(est);
+  EXPECT_EQ(modes.count(EstimatorMode::kRgbdVio), 0u) << "no depth factor may be used";
+  EXPECT_GT(modes.at(EstimatorMode::kVio), est.size() * 7 / 10);
+  const Errors e = start_aligned_errors(est, rec.groundtruth);
+  EXPECT_LT(e.rmse_m, 0.02 * e.path_m) << "rmse " << e.rmse_m << " m over " << e.path_m << " m";
+}
+
+TEST(SlidingWindowEstimator, AblationsChangeTheResultAndStillWork) {
+  const auto& rec = short_walk();
+  const auto base = run(rec, {"estimator.covariance=off"});
+  for (const char* set :
+       {"estimator.marginalization=false", "estimator.features.far_policy=fixed", "estimator.loss.type=huber",
+        "estimator.window_size=5", "estimator.features.reuse_marginalized_tracks=false",
+        "estimator.solver.linear_solver=sparse_normal_cholesky", "estimator.factors.depth_3d=false",
+        "estimator.factors.imu=false"}) {
+    const auto est = run(rec, {"estimator.covariance=off", set});
+    ASSERT_EQ(est.size(), base.size()) << set;
+    bool differs = false;
+    for (std::size_t i = 0; i < est.size() && !differs; ++i) differs = !(est[i].T_W_B.t == base[i].T_W_B.t);
+    EXPECT_TRUE(differs) << set << " changed nothing";
+    const Errors e = start_aligned_errors(est, rec.groundtruth);
+    EXPECT_LT(e.rmse_m, 0.01 * e.path_m) << set << ": rmse " << e.rmse_m << " m over " << e.path_m << " m";
+  }
+}
+
+TEST(SlidingWindowEstimator, FramesWithoutFeaturesAreImuOnlyThenLost) {
+  io::Recording rec = noisy_walk();
+  // Blind the camera from 6 s to 9.5 s after the start: IMU-only, then lost after 2 s.
+  const Timestamp t0 = rec.features.front().t;
+  for (auto& f : rec.features)
+    if (f.t >= t0 + 6'000'000'000 && f.t < t0 + 9'500'000'000) f.features.clear();
+  const auto est = run(rec);
+  bool imu_only = false, lost = false, recovered = false;
+  for (const auto& s : est) {
+    const double t = ns_to_seconds(s.t - t0);
+    if (t > 6.1 && t < 7.9) imu_only |= s.mode == EstimatorMode::kImuOnly;
+    if (t > 8.2 && t < 9.4) lost |= s.mode == EstimatorMode::kLost;
+    if (t > 10.5) recovered |= s.mode == EstimatorMode::kRgbdVio;
+    if (t > 6.1 && t < 8.0) {
+      EXPECT_NE(s.mode, EstimatorMode::kRgbdVio) << t;
+    }
+  }
+  EXPECT_TRUE(imu_only);
+  EXPECT_TRUE(lost);
+  EXPECT_TRUE(recovered);
+  // Two seconds of IMU-only propagation stay bounded (a walking IMU drifts centimetres, not metres).
+  const Errors e = start_aligned_errors(est, rec.groundtruth);
+  EXPECT_LT(e.max_m, 1.0);
+}
+
+TEST(SlidingWindowEstimator, RejectsImagesAndUnusableInput) {
+  const auto& rec = noisy_walk();
+  SlidingWindowEstimator estimator(rec.calibration, EstimatorConfig{});
+  const std::string msg =
+      testing::error_message<Error>([&] { estimator.process(SensorEvent(RgbdFrame{})); }, "image frame");
+  EXPECT_NE(msg.find("image front end not available yet"), std::string::npos) << msg;
+
+  RigCalibration no_depth = rec.calibration;
+  no_depth.cameras.front().depth_baseline_m = 0;
+  testing::expect_throw<ConfigError>([&] { SlidingWindowEstimator(no_depth, EstimatorConfig{}); }, "no depth model");
+  EstimatorConfig vio;
+  vio.use_depth = false;
+  SlidingWindowEstimator ok(no_depth, vio);  // VIO needs no depth model
+
+  RigCalibration no_imu = rec.calibration;
+  no_imu.imu.reset();
+  testing::expect_throw<ConfigError>([&] { SlidingWindowEstimator(no_imu, EstimatorConfig{}); }, "no IMU");
+
+  SlidingWindowEstimator order(rec.calibration, EstimatorConfig{});
+  order.process(SensorEvent(rec.imu[10]));
+  testing::expect_throw<Error>([&] { order.process(SensorEvent(rec.imu[5])); }, "time order");
+}
+
+TEST(SlidingWindowEstimator, GpsFactorsPutTheTrackIntoEnu) {
+  // route1 (outdoors), 30 s, white GPS noise (sigma 3 m horizontal, 5 m vertical) without
+  // multipath. The simulator's world frame is ENU at the recording's origin, so after the
+  // registration T_ENU_W * T_W_B must land on the ground truth, closer than the fixes themselves.
+  testing::ScratchDir dir("swe_gps");
+  const Config sc = Config::parse("{}", "<test>",
+                                  {"scenario=route1", "mount=head", "simulation.mode=features", "duration=30", "seed=2",
+                                   "sensor.camera.rate=10", "features.max_per_frame=60", "sensor.gps.multipath=false"});
+  const auto scenario = simulation::make_scenario(simulation::read_scenario_name(sc));
+  simulation::simulate(scenario, simulation::read_simulation_config(sc, scenario), dir.path());
+  const io::Recording rec = io::read_navaid_recording(dir.path());
+  ASSERT_TRUE(rec.origin.has_value());
+  ASSERT_GT(rec.gps.size(), 30u);
+
+  const Config c = Config::parse("{}", "<test>", {"estimator.factors.gps=true"});
+  SlidingWindowEstimator estimator(rec.calibration, read_estimator_config(c), {}, rec.origin);
+  std::vector<StateEstimate> est;
+  io::SensorEventStream stream(rec);
+  while (auto e = stream.next())
+    for (auto& s : estimator.process(*e)) est.push_back(s);
+  EXPECT_EQ(estimator.statistics().gps_registrations, 1u);
+
+  double sq = 0;
+  std::size_t n = 0;
+  for (const auto& s : est) {
+    if (!s.T_ENU_W) continue;
+    ASSERT_TRUE(s.T_ENU_W_covariance.has_value());
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Mat4>(*s.T_ENU_W_covariance).eigenvalues().minCoeff(), 0.0);
+    sq += ((*s.T_ENU_W * s.T_W_B).t - groundtruth_at(rec.groundtruth, s.t).t).squaredNorm();
+    ++n;
+  }
+  ASSERT_GT(n, est.size() / 3) << "registered too late";
+  double fix_sq = 0;
+  const LocalEnuFrame enu(*rec.origin);
+  for (const auto& f : rec.gps) {
+    const Vec3 z = enu.to_enu(f.latitude_deg, f.longitude_deg, f.altitude_m + f.geoid_separation_m);
+    fix_sq += (z - (groundtruth_at(rec.groundtruth, f.t) * rec.calibration.gps_lever_arm_B)).squaredNorm();
+  }
+  const double fused = std::sqrt(sq / static_cast<double>(n));
+  const double fixes = std::sqrt(fix_sq / static_cast<double>(rec.gps.size()));
+  EXPECT_LT(fused, 0.7 * fixes) << "fused " << fused << " m, fixes " << fixes << " m";
+  RecordProperty("enu_rmse_cm", static_cast<int>(std::lround(fused * 100)));
+  RecordProperty("fix_rmse_cm", static_cast<int>(std::lround(fixes * 100)));
+}
+
+TEST(EstimatorConfig, DefaultsFollowThePaper) {
+  const EstimatorConfig c = read_estimator_config(Config::parse("{}"));
+  EXPECT_EQ(c.window_size, 10);
+  EXPECT_DOUBLE_EQ(c.far_threshold_m, 3.0);
+  EXPECT_DOUBLE_EQ(c.pixel_sigma_px, 1.5);
+  EXPECT_EQ(c.loss, LossKind::kCauchy);
+  EXPECT_EQ(c.far_policy, FarFeaturePolicy::kFree);
+  EXPECT_TRUE(c.use_depth && c.use_imu && c.use_reprojection && c.use_inverse_depth && c.use_depth_3d);
+  EXPECT_TRUE(c.marginalization);
+}
+
+TEST(EstimatorConfig, BadValuesNameTheKey) {
+  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
+           {"estimator.window_size=1", "estimator.window_size"},
+           {"estimator.loss.type=tukey", "estimator.loss.type"},
+           {"estimator.solver.linear_solver=cgnr", "estimator.solver.linear_solver"},
+           {"estimator.features.far_threshold=-1", "estimator.features.far_threshold"},
+           {"estimator.features.far_policy=maybe", "estimator.features.far_policy"},
+           {"estimator.factors.imu=perhaps", "estimator.factors.imu"},
+           {"estimator.factors.mag=true", "estimator.factors.mag"},
+           {"estimator.gps.huber_threshold=0", "estimator.gps.huber_threshold"}}) {
+    const Config c = Config::parse("{}", "<test>", {set});
+    const auto e = testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
+    if (e) {
+      EXPECT_EQ(e->key(), key) << e->what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace navaid::estimation
