@@ -18,6 +18,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/sliding_window_estimator.hpp"
 #include "navaid/experiments/absolute_trajectory_error.hpp"
+#include "navaid/experiments/start_alignment.hpp"
 #include "navaid/io/event_stream.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/tum_trajectory.hpp"
@@ -175,6 +176,25 @@ void run(const RunArgs& a) {
                 {"poses", ate->poses}};
     ate_text = fmt::format("ATE {:.3f} m over {:.1f} m ({:.2f} %)", ate->rmse_m, ate->path_length_m,
                            ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0);
+  }
+  {
+    // Consistency: NEES in the frame of the estimator's first state (the one its covariance grows
+    // from); averaged over this run's frames (correlated in time: indicative; average the values
+    // of independent seeds, e.g. with navaid ablate, for the chi-square test).
+    std::vector<io::StampedPose> gt;
+    for (const auto& g : recording.groundtruth) gt.push_back({g.t, g.T_W_B});
+    const auto aligned = experiments::align_to_first_state(estimates, gt);
+    if (!aligned.empty()) {
+      const auto nees = experiments::first_state_nees(aligned, gt);
+      j["nees"] = {{"frame", "first state (4-DOF: yaw + translation at the first estimate)"},
+                   {"position_mean", nees.position_summary.average},
+                   {"orientation_mean", nees.orientation_summary.average},
+                   {"position_fraction_within_95", nees.position_summary.fraction_inside},
+                   {"orientation_fraction_within_95", nees.orientation_summary.fraction_inside},
+                   {"poses", aligned.size()}};
+      ate_text += fmt::format("; mean NEES position {:.2f}, orientation {:.2f} (3 if consistent)",
+                              nees.position_summary.average, nees.orientation_summary.average);
+    }
   }
   if (est_config.use_gps) {
     // The simulator's ground truth lives in ENU at the recording's origin (T_ENU_W = identity).

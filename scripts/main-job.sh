@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # navaid's main job: a full-device simulated walk (eLabrador Route 1 with the head mount: RGB-D
-# images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode,
-# and a summary and plot of real recorded data from ../shared/data (a GNSS receiver capture and
-# the EuRoC V1_02 ground truth).
+# images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode
+# run through the sliding-window estimator and evaluated against ground truth, and a summary and
+# plot of real recorded data from ../shared/data (a GNSS receiver capture and the EuRoC V1_02
+# ground truth).
 # Usage: bash scripts/main-job.sh [OUT_DIR]   (default out/main-job)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +30,11 @@ $NAVAID plot "$OUT/sim-route1-head" --out "$OUT/sim-route1-head-track.png"
 echo "== Simulated walk: the whole of route1 in feature mode"
 $NAVAID simulate --scenario route1 --mount head --seed 7 --set simulation.mode=features --out "$OUT/sim-route1-features"
 $NAVAID info "$OUT/sim-route1-features" | tee "$OUT/sim-route1-features-info.txt"
+
+echo "== Estimator (sliding window, RGBD-VIO factors) on the whole route, and its evaluation"
+$NAVAID run --recording "$OUT/sim-route1-features" --out "$OUT/run-route1"
+$NAVAID eval --est "$OUT/run-route1/trajectory.tum" --gt "$OUT/sim-route1-features" --align 4dof \
+  --out "$OUT/eval-route1"
 
 echo "== GNSS capture: summary, conversion to a navaid recording, ENU track"
 $NAVAID info "$DATA/gpsd-nmea/haicom-305N.log" | tee "$OUT/gnss-capture-info.txt"
