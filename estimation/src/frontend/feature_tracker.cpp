@@ -72,6 +72,18 @@ void mask_depth_edges(const ImageF32& depth, double relative_jump, int margin, c
   mask.setTo(cv::Scalar(0), edge);
 }
 
+// Drops the tracks whose keep flag is 0 from the parallel arrays, preserving order.
+template <class... Arrays>
+void keep_where(const std::vector<char>& keep, Arrays&... arrays) {
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) {
+      ((arrays[m] = arrays[i]), ...);
+      ++m;
+    }
+  (arrays.resize(m), ...);
+}
+
 }  // namespace
 
 FeatureTracker::FeatureTracker(std::shared_ptr<const CameraModel> camera, const FrontendConfig& config)
@@ -205,17 +217,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
             ++stats_.rejected_ransac;
           }
     }
-    std::size_t m = 0;
-    for (std::size_t i = 0; i < ids.size(); ++i)
-      if (keep[i]) {
-        ids[m] = ids[i];
-        ages[m] = ages[i];
-        uv[m] = uv[i];
-        ++m;
-      }
-    ids.resize(m);
-    ages.resize(m);
-    uv.resize(m);
+    keep_where(keep, ids, ages, uv);
     stats_.ms_ransac = ms_since(t);
   }
 
@@ -236,17 +238,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       keep[i] = 1;
       if (radius > 0) cv::circle(mask, p, radius, cv::Scalar(0), cv::FILLED);
     }
-    std::size_t m = 0;
-    for (std::size_t i = 0; i < ids.size(); ++i)
-      if (keep[i]) {
-        ids[m] = ids[i];
-        ages[m] = ages[i];
-        uv[m] = uv[i];
-        ++m;
-      }
-    ids.resize(m);
-    ages.resize(m);
-    uv.resize(m);
+    keep_where(keep, ids, ages, uv);
   }
   stats_.tracked = ids.size();
 
