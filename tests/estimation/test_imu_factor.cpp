@@ -12,21 +12,12 @@
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/simulation/imu_model.hpp"
 #include "navaid/simulation/walker_trajectory.hpp"
+#include "test_support.hpp"
 
 namespace navaid::estimation {
 namespace {
 
 using testing::jacobians_match;
-
-ImuCalibration calibration() {
-  ImuCalibration c;
-  c.rate_hz = 200.0;
-  c.gyro_noise_density = 1.6968e-4;
-  c.gyro_random_walk = 1.9393e-5;
-  c.accel_noise_density = 2.0e-3;
-  c.accel_random_walk = 3.0e-3;
-  return c;
-}
 
 struct Keyframe {
   double pose[kPoseSize];
@@ -55,11 +46,11 @@ Scenario walk_scenario(double t_i, double t_j) {
   opt.bias_walk = false;
   opt.initial_gyro_bias = bg;
   opt.initial_accel_bias = ba;
-  simulation::ImuModel model(calibration(), opt);
+  simulation::ImuModel model(navaid::testing::euroc_imu_calibration(), opt);
   const auto stream = simulation::simulate_imu_stream(traj, model, t_i - 0.1, t_j + 0.1);
   // Linearized at a slightly wrong bias so that the first-order correction is exercised.
   ImuPreintegration pre = ImuPreintegration::between(stream.samples, seconds_to_ns(t_i), seconds_to_ns(t_j),
-                                                     ImuNoise::from(calibration()), bg + Vec3(2e-4, -1e-4, 1e-4),
+                                                     ImuNoise::from(navaid::testing::euroc_imu_calibration()), bg + Vec3(2e-4, -1e-4, 1e-4),
                                                      ba + Vec3(-2e-3, 1e-3, 2e-3));
   const auto si = traj.state(t_i), sj = traj.state(t_j);
   return {pre, keyframe(si.T_W_B, si.v_W, bg, ba), keyframe(sj.T_W_B, sj.v_W, bg, ba)};
@@ -143,7 +134,7 @@ TEST(ImuFactor, SolvesForTheSecondKeyframe) {
 }
 
 TEST(ImuFactor, RejectsDegeneratePreintegrations) {
-  ImuPreintegration empty(ImuNoise::from(calibration()), Vec3::Zero(), Vec3::Zero());
+  ImuPreintegration empty(ImuNoise::from(navaid::testing::euroc_imu_calibration()), Vec3::Zero(), Vec3::Zero());
   EXPECT_THROW(ImuFactor{empty}, Error);
   ImuPreintegration noiseless(ImuNoise{}, Vec3::Zero(), Vec3::Zero());
   for (int k = 0; k < 3; ++k) {

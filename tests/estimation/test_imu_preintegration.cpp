@@ -8,6 +8,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/simulation/imu_model.hpp"
 #include "navaid/simulation/walker_trajectory.hpp"
+#include "test_support.hpp"
 
 namespace navaid::estimation {
 namespace {
@@ -16,16 +17,6 @@ using simulation::ImuModel;
 using simulation::ImuModelOptions;
 using simulation::KinematicState;
 using simulation::WalkerTrajectory;
-
-ImuCalibration calibration(double rate_hz) {
-  ImuCalibration c;  // EuRoC-like ADIS16448 values (Kalibr units)
-  c.rate_hz = rate_hz;
-  c.gyro_noise_density = 1.6968e-4;
-  c.gyro_random_walk = 1.9393e-5;
-  c.accel_noise_density = 2.0e-3;
-  c.accel_random_walk = 3.0e-3;
-  return c;
-}
 
 ImuModelOptions noiseless(const Vec3& b_g = Vec3::Zero(), const Vec3& b_a = Vec3::Zero()) {
   ImuModelOptions o;
@@ -42,7 +33,7 @@ WalkerTrajectory test_walk() {
 
 std::vector<ImuSample> stream(const WalkerTrajectory& traj, double rate_hz, double t0, double t1,
                               const ImuModelOptions& options) {
-  ImuModel model(calibration(rate_hz), options);
+  ImuModel model(navaid::testing::euroc_imu_calibration(rate_hz), options);
   return simulation::simulate_imu_stream(traj, model, t0, t1).samples;
 }
 
@@ -54,7 +45,7 @@ struct PredictionError {
 PredictionError prediction_error(const WalkerTrajectory& traj, const std::vector<ImuSample>& samples, double t_i,
                                  double t_j, const Vec3& b_g = Vec3::Zero(), const Vec3& b_a = Vec3::Zero()) {
   const ImuPreintegration pre = ImuPreintegration::between(samples, seconds_to_ns(t_i), seconds_to_ns(t_j),
-                                                           ImuNoise::from(calibration(200.0)), b_g, b_a);
+                                                           ImuNoise::from(navaid::testing::euroc_imu_calibration(200.0)), b_g, b_a);
   const KinematicState si = traj.state(t_i), sj = traj.state(t_j);
   SE3 T_j;
   Vec3 v_j;
@@ -141,7 +132,7 @@ struct BiasCorrectionError {
 };
 
 BiasCorrectionError bias_correction_error(const std::vector<ImuSample>& samples, const Vec3& dbg, const Vec3& dba) {
-  const ImuNoise noise = ImuNoise::from(calibration(200.0));
+  const ImuNoise noise = ImuNoise::from(navaid::testing::euroc_imu_calibration(200.0));
   const Vec3 bg0(0.01, 0.0, -0.01), ba0(0.05, -0.05, 0.1);
   const Timestamp ti = samples.front().t, tj = samples.back().t;
   const ImuPreintegration lin = ImuPreintegration::between(samples, ti, tj, noise, bg0, ba0);
@@ -182,7 +173,7 @@ TEST(ImuPreintegration, BiasJacobiansMatchReintegration) {
 TEST(ImuPreintegration, RepropagateEqualsFreshIntegrationAndHonoursThresholds) {
   const WalkerTrajectory traj = test_walk();
   const std::vector<ImuSample> samples = stream(traj, 200.0, 0.0, 2.0, noiseless());
-  const ImuNoise noise = ImuNoise::from(calibration(200.0));
+  const ImuNoise noise = ImuNoise::from(navaid::testing::euroc_imu_calibration(200.0));
   const Vec3 bg(0.01, 0.02, -0.01), ba(0.1, -0.2, 0.05);
   ImuPreintegration p = ImuPreintegration::between(samples, 0, seconds_to_ns(2.0), noise, Vec3::Zero(), Vec3::Zero());
   const ImuPreintegration fresh = ImuPreintegration::between(samples, 0, seconds_to_ns(2.0), noise, bg, ba);
@@ -231,7 +222,7 @@ TEST(ImuPreintegration, CovarianceMatchesMonteCarloOverNoisyStreams) {
   // walk from simulation::ImuModel), whitened with the propagated covariance: must be N(0, I15).
   const WalkerTrajectory traj = test_walk();
   const double rate = 200.0, t0 = 2.0, t1 = 3.0;
-  const ImuCalibration calib = calibration(rate);
+  const ImuCalibration calib = navaid::testing::euroc_imu_calibration(rate);
   const ImuNoise noise = ImuNoise::from(calib);
   const int steps = static_cast<int>((t1 - t0) * rate);
   std::vector<KinematicState> states;

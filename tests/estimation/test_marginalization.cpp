@@ -26,6 +26,7 @@
 #include "navaid/estimation/factors/reprojection_factor.hpp"
 #include "navaid/simulation/imu_model.hpp"
 #include "navaid/simulation/walker_trajectory.hpp"
+#include "test_support.hpp"
 
 namespace navaid::estimation {
 namespace {
@@ -111,16 +112,6 @@ double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 // features anchored in keyframes 0 and 1 with reprojection (Cauchy), inverse-depth and 3D depth
 // factors, and a prior on the first pose.
 
-ImuCalibration imu_calibration() {
-  ImuCalibration c;
-  c.rate_hz = 200.0;
-  c.gyro_noise_density = 1.6968e-4;
-  c.gyro_random_walk = 1.9393e-5;
-  c.accel_noise_density = 2.0e-3;
-  c.accel_random_walk = 3.0e-3;
-  return c;
-}
-
 // Builds a MarginalizationPrior by hand: a Gaussian prior on one block around its current value.
 std::shared_ptr<MarginalizationPrior> gaussian_prior(double* block, BlockKind kind, int ambient_size,
                                                      const Eigen::VectorXd& sigmas) {
@@ -171,7 +162,7 @@ Batch make_batch(std::uint64_t seed) {
   imu_options.seed = seed;
   imu_options.initial_gyro_bias = Vec3(0.004, -0.003, 0.002);
   imu_options.initial_accel_bias = Vec3(0.05, -0.04, 0.03);
-  simulation::ImuModel imu(imu_calibration(), imu_options);
+  simulation::ImuModel imu(navaid::testing::euroc_imu_calibration(), imu_options);
   const auto stream = simulation::simulate_imu_stream(walk, imu, 1.9, 3.1);
 
   const std::array<double, Batch::kKeyframes> times{2.0, 2.4, 2.8};
@@ -196,7 +187,7 @@ Batch make_batch(std::uint64_t seed) {
   for (int k = 0; k + 1 < Batch::kKeyframes; ++k) {
     const ImuPreintegration pre =
         ImuPreintegration::between(stream.samples, seconds_to_ns(times[k]), seconds_to_ns(times[k + 1]),
-                                   ImuNoise::from(imu_calibration()), Vec3::Zero(), Vec3::Zero());
+                                   ImuNoise::from(navaid::testing::euroc_imu_calibration()), Vec3::Zero(), Vec3::Zero());
     batch.factors.push_back({std::make_shared<ImuFactor>(pre), nullptr,
                              {batch.pose[k].data(), batch.speed_bias[k].data(), batch.pose[k + 1].data(),
                               batch.speed_bias[k + 1].data()}});

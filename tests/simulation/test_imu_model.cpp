@@ -11,16 +11,6 @@
 namespace navaid::simulation {
 namespace {
 
-ImuCalibration calibration(double rate_hz) {
-  ImuCalibration c;  // EuRoC-like ADIS16448 values (Kalibr units)
-  c.rate_hz = rate_hz;
-  c.gyro_noise_density = 1.6968e-4;
-  c.gyro_random_walk = 1.9393e-5;
-  c.accel_noise_density = 2.0e-3;
-  c.accel_random_walk = 3.0e-3;
-  return c;
-}
-
 ImuModelOptions noiseless() {
   ImuModelOptions o;
   o.white_noise = false;
@@ -67,7 +57,7 @@ NavState integrate(const NavState& x0, const std::vector<ImuSample>& s, std::siz
 
 TEST(ImuModel, NoiselessImuIntegratesToGroundTruth) {
   const WalkerTrajectory traj = test_walk();
-  ImuModel model(calibration(1000.0), noiseless());
+  ImuModel model(navaid::testing::euroc_imu_calibration(1000.0), noiseless());
   const SimulatedImuStream stream = simulate_imu_stream(traj, model, 0.5, 10.5, 123'000'000'000);
   ASSERT_EQ(stream.samples.size(), 10001u);
   ASSERT_EQ(stream.ground_truth.size(), stream.samples.size());
@@ -86,7 +76,7 @@ TEST(ImuModel, NoiselessImuIntegratesToGroundTruth) {
 
 TEST(ImuModel, LeverArmAndRotatedImuIntegrateToImuPose) {
   const WalkerTrajectory traj = test_walk();
-  ImuCalibration calib = calibration(1000.0);
+  ImuCalibration calib = navaid::testing::euroc_imu_calibration(1000.0);
   calib.T_B_I = SE3(quat_from_rpy(0.1, -0.2, 0.7), Vec3(0.05, -0.08, 0.12));
   ImuModel model(calib, noiseless());
   const SimulatedImuStream stream = simulate_imu_stream(traj, model, 1.0, 6.0);
@@ -100,7 +90,7 @@ TEST(ImuModel, LeverArmAndRotatedImuIntegrateToImuPose) {
 }
 
 TEST(ImuModel, StaticLevelImuMeasuresMinusGravity) {
-  ImuModel model(calibration(200.0), noiseless());
+  ImuModel model(navaid::testing::euroc_imu_calibration(200.0), noiseless());
   const ImuSample s = model.measure(KinematicState{}, 0);
   EXPECT_LT((s.accel - Vec3(0, 0, 9.81)).norm(), 1e-12);
   EXPECT_LT(s.gyro.norm(), 1e-15);
@@ -110,7 +100,7 @@ TEST(ImuModel, ScaleAndMisalignmentMultiplyTheTrueSignals) {
   ImuModelOptions opt = noiseless();
   opt.accel_scale_misalignment << 1.01, 0.002, -0.001, 0.0, 0.99, 0.003, 0.001, -0.002, 1.02;
   opt.gyro_scale_misalignment << 0.98, 0.0, 0.004, 0.001, 1.03, 0.0, 0.0, 0.002, 1.0;
-  ImuModel model(calibration(200.0), opt);
+  ImuModel model(navaid::testing::euroc_imu_calibration(200.0), opt);
   KinematicState turning;
   turning.omega_B = Vec3(0.1, -0.2, 0.5);
   const ImuSample s = model.measure(turning, 0);
@@ -118,13 +108,13 @@ TEST(ImuModel, ScaleAndMisalignmentMultiplyTheTrueSignals) {
   EXPECT_LT((s.gyro - opt.gyro_scale_misalignment * turning.omega_B).norm(), 1e-15);
   ImuModelOptions bad = noiseless();
   bad.accel_scale_misalignment(0, 0) = 9.81;  // a unit mistake, not a scale error
-  const auto e = testing::expect_throw<ConfigError>([&] { ImuModel(calibration(200.0), bad); });
+  const auto e = testing::expect_throw<ConfigError>([&] { ImuModel(navaid::testing::euroc_imu_calibration(200.0), bad); });
   ASSERT_TRUE(e);
   EXPECT_EQ(e->key(), "accel_scale_misalignment");
 }
 
 TEST(ImuModel, WhiteNoiseStatisticsMatchDensity) {
-  const ImuCalibration calib = calibration(200.0);
+  const ImuCalibration calib = navaid::testing::euroc_imu_calibration(200.0);
   ImuModelOptions opt;
   opt.seed = 7;
   opt.bias_walk = false;
@@ -157,7 +147,7 @@ TEST(ImuModel, WhiteNoiseStatisticsMatchDensity) {
 }
 
 TEST(ImuModel, BiasRandomWalkVarianceGrowsAsRwSquaredTimesT) {
-  const ImuCalibration calib = calibration(100.0);
+  const ImuCalibration calib = navaid::testing::euroc_imu_calibration(100.0);
   const int runs = 500, steps = 200;  // T = 2 s
   const double T = steps / calib.rate_hz;
   double g2 = 0.0, a2 = 0.0;
@@ -180,7 +170,7 @@ TEST(ImuModel, SameSeedSameStreamDifferentSeedDifferent) {
   auto run = [&](std::uint64_t seed) {
     ImuModelOptions opt;
     opt.seed = seed;
-    ImuModel model(calibration(200.0), opt);
+    ImuModel model(navaid::testing::euroc_imu_calibration(200.0), opt);
     return simulate_imu_stream(traj, model, 0.0, 2.0);
   };
   const SimulatedImuStream a = run(42), b = run(42), c = run(43);
@@ -198,11 +188,11 @@ TEST(ImuModel, SameSeedSameStreamDifferentSeedDifferent) {
 }
 
 TEST(ImuModel, RejectsBadCalibrationAndBackwardTime) {
-  EXPECT_THROW(ImuModel(calibration(0.0)), ConfigError);
-  ImuCalibration c = calibration(100.0);
+  EXPECT_THROW(ImuModel(navaid::testing::euroc_imu_calibration(0.0)), ConfigError);
+  ImuCalibration c = navaid::testing::euroc_imu_calibration(100.0);
   c.accel_noise_density = -1.0;
   EXPECT_THROW(ImuModel{c}, ConfigError);
-  ImuModel model(calibration(100.0));
+  ImuModel model(navaid::testing::euroc_imu_calibration(100.0));
   model.measure(KinematicState{}, 1000);
   EXPECT_THROW(model.measure(KinematicState{}, 999), std::invalid_argument);
 }

@@ -41,6 +41,16 @@ std::string read_text(const std::filesystem::path& file) {
   return s.str();
 }
 
+ImuCalibration euroc_imu_calibration(double rate_hz) {
+  ImuCalibration c;
+  c.rate_hz = rate_hz;
+  c.gyro_noise_density = 1.6968e-4;
+  c.gyro_random_walk = 1.9393e-5;
+  c.accel_noise_density = 2.0e-3;
+  c.accel_random_walk = 3.0e-3;
+  return c;
+}
+
 std::map<std::string, std::string> folder_contents(const std::filesystem::path& root) {
   std::map<std::string, std::string> files;
   for (const auto& e : std::filesystem::recursive_directory_iterator(root))

@@ -10,6 +10,8 @@
 #include <string>
 #include <utility>
 
+#include "navaid/core/calibration.hpp"
+
 namespace navaid::testing {
 
 /// ../shared/data beside the clone. When it is absent, tests that need it are skipped on a
@@ -34,6 +36,10 @@ class ScratchDir {
 
 void write_text(const std::filesystem::path& file, const std::string& content);
 std::string read_text(const std::filesystem::path& file);
+
+/// IMU noise of the EuRoC MAV's ADIS16448 (Kalibr units) at `rate_hz`: the reference IMU of the
+/// simulator and estimator tests.
+ImuCalibration euroc_imu_calibration(double rate_hz = 200.0);
 
 /// Every regular file under `root`, byte for byte, keyed by its relative path.
 std::map<std::string, std::string> folder_contents(const std::filesystem::path& root);
