@@ -13,6 +13,10 @@ using Mat3 = Eigen::Matrix3d;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Quat = Eigen::Quaterniond;
 
+/// Gravity in the world frame W (gravity-aligned, z up; DESIGN.md §4) [m/s^2]: one value for the
+/// simulator's IMU and the estimator's preintegration, so that they agree exactly.
+inline const Vec3 kGravityW(0.0, 0.0, -9.81);
+
 /// A rigid transform T_A_B: rotation q and translation t (p_A = q * p_B + t).
 struct SE3 {
   Quat q = Quat::Identity();

@@ -44,8 +44,6 @@
 
 namespace navaid::estimation {
 
-inline const Vec3 kGravityW(0.0, 0.0, -9.81);  ///< DESIGN.md §4
-
 /// Continuous-time IMU noise in Kalibr units.
 struct ImuNoise {
   double gyro_noise_density = 0;   ///< [rad/s/sqrt(Hz)]

@@ -21,8 +21,6 @@
 
 namespace navaid::simulation {
 
-inline const Vec3 kGravityW(0.0, 0.0, -9.81);  ///< DESIGN.md §4
-
 struct ImuModelOptions {
   std::uint64_t seed = 0;
   bool white_noise = true;  ///< add n_g, n_a
