@@ -1,5 +1,6 @@
-// navaid run: the sliding-window estimator on a recording (feature-level for now), writing a run
-// folder: trajectory.tum, estimates.csv, timing.csv, summary.json, config.yaml (docs/estimator.md,
+// navaid run: the sliding-window estimator on a recording, from its feature observations or, when
+// it has none, from its images through the front end (ImageFeatureSource), writing a run folder:
+// trajectory.tum, estimates.csv, timing.csv, summary.json, config.yaml (docs/estimator.md,
 // "navaid run").
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -12,15 +13,18 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/estimation/frontend/image_feature_source.hpp"
 #include "navaid/estimation/sliding_window_estimator.hpp"
 #include "navaid/experiments/absolute_trajectory_error.hpp"
 #include "navaid/experiments/start_alignment.hpp"
 #include "navaid/io/event_stream.hpp"
-#include "navaid/io/navaid_recording.hpp"
+#include "navaid/io/image_io.hpp"
+#include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "progress.hpp"
 
@@ -89,47 +93,126 @@ void write_estimates_csv(const std::filesystem::path& file, const std::vector<St
   }
 }
 
+// Where the estimator's features come from.
+enum class Input { kFeatures, kImages };
+
+struct FrontendTime {
+  double track_ms = 0, load_ms = 0;
+};
+
+io::Recording read_recording(const std::filesystem::path& path) {
+  const io::InputKind kind = io::detect_input(path);
+  if (kind != io::InputKind::kNavaidRecording && kind != io::InputKind::kEuroc && kind != io::InputKind::kTumRgbd)
+    throw IoError(path.string(), "is a " + std::string(io::to_string(kind)) +
+                                     ", not a recording with IMU and camera data (navaid, EuRoC or TUM RGB-D)");
+  return io::read_input(path, kind);
+}
+
+// Intensity and depth only: labels and confidence are not the estimator's business.
+void load_tracking_images(RgbdFrame& frame) {
+  if (frame.intensity_path.empty())
+    throw IoError(frame.camera, "frame " + std::to_string(frame.index) + " at " + std::to_string(frame.t) +
+                                    " ns has no intensity image");
+  frame.intensity = io::read_intensity_image(frame.intensity_path);
+  if (!frame.depth_path.empty()) frame.depth = io::read_depth_png(frame.depth_path, frame.depth_png_scale_m);
+}
+
 void run(const RunArgs& a) {
   if (a.recording.empty()) throw UsageError("--recording is required");
   if (a.out.empty()) throw UsageError("--out is required");
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
-  const estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
+  estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
+  const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
   config.reject_unknown_keys();
 
-  if (!io::is_navaid_recording(a.recording))
-    throw IoError(a.recording.string(), "not a navaid recording (no recording.yaml); convert it first");
-  const io::Recording recording = io::read_navaid_recording(a.recording);
-  if (recording.features.empty())
-    throw Error(a.recording.string() +
-                ": no feature observations; image front end not available yet: run on a feature-level recording "
-                "(navaid simulate --set simulation.mode=features)");
+  const io::Recording recording = read_recording(a.recording);
   if (recording.imu.empty()) throw Error(a.recording.string() + ": no IMU data; the estimator needs an IMU");
+  if (std::any_of(recording.imu.begin(), recording.imu.end(), [](const ImuSample& s) { return !s.has_gyro; }))
+    throw Error(a.recording.string() + ": IMU samples without gyro data (accelerometer only, as TUM RGB-D); the " +
+                "estimator needs a gyro");
+  if (recording.calibration.cameras.empty())
+    throw Error(a.recording.string() + ": no camera in the calibration; the estimator needs one");
+  // The estimator's camera (its default: the rig's first); the front end tracks the same one.
+  const std::string camera = recording.calibration.cameras.front().name;
+  const Input input = recording.features.empty() ? Input::kImages : Input::kFeatures;
+  std::size_t camera_frames = 0;
+  bool any_depth = false;
+  if (input == Input::kFeatures) {
+    for (const auto& f : recording.features) camera_frames += f.camera == camera;
+  } else {
+    for (const auto& f : recording.frames)
+      if (f.camera == camera) {
+        ++camera_frames;
+        any_depth = any_depth || f.has_depth();
+      }
+    if (recording.frames.empty())
+      throw Error(a.recording.string() +
+                  ": no camera data: neither feature observations (features.csv) nor image frames; the estimator "
+                  "needs one of them");
+    if (camera_frames == 0)
+      throw Error(a.recording.string() + ": no image frames of camera '" + camera + "', the estimator's camera");
+    if (!any_depth && est_config.use_depth) {
+      // Nothing to measure depth with: VIO (the back end would otherwise ask for a depth noise model).
+      spdlog::info("{}: no depth images: running as VIO", a.recording.string());
+      est_config.use_depth = false;
+    }
+  }
 
-  estimation::SlidingWindowEstimator estimator(recording.calibration, est_config, {}, recording.origin);
+  estimation::SlidingWindowEstimator estimator(recording.calibration, est_config, camera, recording.origin);
+  std::optional<estimation::ImageFeatureSource> source;
+  if (input == Input::kImages) {
+    // Replay is deterministic only with OpenCV's parallel loops off (they change the tracks' last bits).
+    estimation::set_opencv_threads(1);
+    source.emplace(recording.calibration, frontend_config, camera, &load_tracking_images);
+  }
   std::filesystem::create_directories(a.out);
 
   std::vector<StateEstimate> estimates;
   std::vector<double> frame_ms;
+  std::map<Timestamp, FrontendTime> frontend_pending;  // tracked frames waiting for their estimate
+  std::vector<std::optional<FrontendTime>> frontend_times;  // per estimate
+  const auto take_frontend_time = [&](Timestamp t) {
+    const auto it = frontend_pending.find(t);
+    if (it == frontend_pending.end()) return std::optional<FrontendTime>();
+    const FrontendTime ft = it->second;
+    frontend_pending.erase(it);
+    return std::optional<FrontendTime>(ft);
+  };
   io::SensorEventStream stream(recording);
-  Progress progress("estimating", recording.features.size());
+  Progress progress(input == Input::kImages ? "tracking and estimating" : "estimating", camera_frames);
   double pending_ms = 0;
   while (auto event = stream.next()) {
-    if (std::holds_alternative<RgbdFrame>(*event)) continue;  // the features stand for the images
+    if (!source && std::holds_alternative<RgbdFrame>(*event)) continue;  // the features stand for the images
     const auto start = std::chrono::steady_clock::now();
-    std::vector<StateEstimate> out = estimator.process(*event);
+    std::optional<SensorEvent> input_event = std::move(event);
+    if (source) {
+      const bool is_frame = std::holds_alternative<RgbdFrame>(*input_event);
+      input_event = source->process(std::move(*input_event));
+      if (is_frame && input_event)
+        frontend_pending[event_time(*input_event)] = {source->stats().ms_total, source->last_load_ms()};
+    }
+    std::vector<StateEstimate> out;
+    if (input_event) out = estimator.process(*input_event);
     pending_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (out.empty()) continue;
-    // The work since the previous estimate (IMU buffering included) is this frame's cost.
+    // The work since the previous estimate (IMU buffering, image loading and tracking included) is
+    // this frame's cost.
     for (auto& e : out) {
       frame_ms.push_back(pending_ms / static_cast<double>(out.size()));
+      frontend_times.push_back(take_frontend_time(e.t));
       estimates.push_back(std::move(e));
     }
     pending_ms = 0;
     progress.update(estimates.size());
+    // The prediction of the next frame's tracks uses the back end's gyro bias once it has one.
+    const EstimatorMode mode = estimates.back().mode;
+    if (source && mode != EstimatorMode::kInitializing && mode != EstimatorMode::kLost)
+      source->set_gyro_bias(estimates.back().b_g);
   }
   for (auto& e : estimator.finish()) {
     frame_ms.push_back(0);
+    frontend_times.push_back(take_frontend_time(e.t));
     estimates.push_back(std::move(e));
   }
   progress.finish();
@@ -141,15 +224,23 @@ void run(const RunArgs& a) {
   write_estimates_csv(a.out / "estimates.csv", estimates);
   {
     std::ofstream timing(a.out / "timing.csv");
-    timing << "t_ns,ms,mode\n";
-    for (std::size_t i = 0; i < estimates.size(); ++i)
-      timing << fmt::format("{},{:.4f},{}\n", estimates[i].t, frame_ms[i], to_string(estimates[i].mode));
+    // frontend_ms and image_load_ms stay empty for feature-level input.
+    timing << "t_ns,ms,mode,frontend_ms,image_load_ms\n";
+    for (std::size_t i = 0; i < estimates.size(); ++i) {
+      timing << fmt::format("{},{:.4f},{}", estimates[i].t, frame_ms[i], to_string(estimates[i].mode));
+      if (const auto& ft = frontend_times[i])
+        timing << fmt::format(",{:.4f},{:.4f}\n", ft->track_ms, ft->load_ms);
+      else
+        timing << ",,\n";
+    }
   }
   std::ofstream(a.out / "config.yaml") << config.dump();
 
   const auto& st = estimator.statistics();
   nlohmann::ordered_json j;
   j["recording"] = a.recording.string();
+  j["input"] = input == Input::kImages ? "images (front end)" : "features";
+  j["depth"] = est_config.use_depth;
   j["frames"] = estimates.size();
   j["keyframes"] = st.keyframes;
   j["solves"] = st.solves;
@@ -167,6 +258,20 @@ void run(const RunArgs& a) {
   j["mode_fractions"] = fractions;
   j["time_per_frame_ms"] = {{"median", percentile(frame_ms, 0.5)}, {"p99", percentile(frame_ms, 0.99)},
                             {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())}};
+  if (source) {
+    std::vector<double> track_ms, load_ms;
+    for (const auto& ft : frontend_times)
+      if (ft) {
+        track_ms.push_back(ft->track_ms);
+        load_ms.push_back(ft->load_ms);
+      }
+    auto& t = j["time_per_frame_ms"];
+    t["frontend_median"] = percentile(track_ms, 0.5);
+    t["frontend_p99"] = percentile(track_ms, 0.99);
+    t["image_load_median"] = percentile(load_ms, 0.5);
+    t["image_load_p99"] = percentile(load_ms, 0.99);
+    j["frontend"] = {{"frames_tracked", source->frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
+  }
   std::string ate_text = "no ground truth";
   if (const auto ate = ate_4dof(poses, recording.groundtruth)) {
     j["ate"] = {{"alignment", "posyaw (4-DOF: yaw + translation)"},
@@ -221,19 +326,25 @@ void run(const RunArgs& a) {
     j["gps"] = g;
   }
   std::ofstream(a.out / "summary.json") << j.dump(2) << "\n";
-  std::cout << fmt::format("wrote {}: {} frames, {} keyframes, {:.0f} % RGBD-VIO, median {:.1f} ms/frame; {}\n",
-                           a.out.string(), estimates.size(), st.keyframes, 100.0 * fractions["rgbd-vio"].get<double>(),
-                           percentile(frame_ms, 0.5), ate_text);
+  std::string frontend_text;
+  if (source)
+    frontend_text = fmt::format(" (front end {:.1f})", j["time_per_frame_ms"]["frontend_median"].get<double>());
+  std::cout << fmt::format(
+      "wrote {}: {} frames from {}, {} keyframes, {:.0f} % RGBD-VIO, {:.0f} % VIO, median {:.1f} ms/frame{}; {}\n",
+      a.out.string(), estimates.size(), input == Input::kImages ? "images" : "features", st.keyframes,
+      100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(), percentile(frame_ms, 0.5),
+      frontend_text, ate_text);
 }
 
 }  // namespace
 
 void add_run_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("run", "Run the sliding-window estimator on a feature-level recording");
+  auto* cmd = app.add_subcommand("run", "Run the sliding-window estimator on a recording (features or images)");
   auto a = std::make_shared<RunArgs>();
-  cmd->add_option("--recording", a->recording, "navaid recording folder with feature observations");
+  cmd->add_option("--recording", a->recording,
+                  "Recording: navaid (feature observations or images), EuRoC or TUM RGB-D folder");
   cmd->add_option("--out", a->out, "Run folder to write (trajectory.tum, estimates.csv, timing.csv, summary.json)");
-  cmd->add_option("--config", a->config_file, "YAML configuration (estimator.* keys, docs/estimator.md)")
+  cmd->add_option("--config", a->config_file, "YAML configuration (estimator.* and frontend.* keys, docs/estimator.md)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", a->overrides, "Override a key, e.g. --set estimator.depth.enabled=false (repeatable)");
   cmd->callback([a] { run(*a); });

@@ -2,6 +2,9 @@
 
 #include <limits>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
 #include "navaid/core/errors.hpp"
 
 namespace navaid::estimation {
@@ -17,6 +20,37 @@ Enum parse_enum(const std::string& name, const char* const (&names)[N], const En
   throw Error("unreachable: Config::get_string validated '" + name + "'");
 }
 
+Vec3 get_vec3(const Config& c, const char* key, const Vec3& fallback, Range allowed) {
+  if (!c.has(key)) return fallback;
+  const auto v = c.get_doubles(key, 3, allowed);
+  return Vec3(v[0], v[1], v[2]);
+}
+
+void read_mag(const Config& c, EstimatorConfig& e) {
+  const char* ref_key = "estimator.mag.reference_field";
+  e.mag_reference_field_enu = get_vec3(c, ref_key, e.mag_reference_field_enu, {-1e-3, 1e-3});
+  // The factor needs a heading: a field without a horizontal part (or given in microtesla by
+  // mistake, caught by the range above) cannot define one.
+  const Vec3& m = e.mag_reference_field_enu;
+  if (!(m.head<2>().norm() >= 1e-3 * m.norm()) || !(m.head<2>().norm() > 1e-9))
+    throw ConfigError(c.origin(ref_key), ref_key,
+                      "needs a horizontal component: [east, north, up] in tesla, e.g. [0, 20e-6, -45e-6]");
+  e.mag_hard_iron = get_vec3(c, "estimator.mag.hard_iron", e.mag_hard_iron, {-1e-3, 1e-3});
+  const char* soft_key = "estimator.mag.soft_iron";
+  if (c.has(soft_key)) {
+    const auto v = c.get_doubles(soft_key, 9, {-100, 100});
+    for (int i = 0; i < 9; ++i) e.mag_soft_iron(i / 3, i % 3) = v[static_cast<std::size_t>(i)];
+    const Mat3& A = e.mag_soft_iron;
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (A + A.transpose()));
+    const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
+    if ((A - A.transpose()).norm() > 1e-3 * A.norm() || !(lo > 1e-3 * hi))
+      throw ConfigError(c.origin(soft_key), soft_key,
+                        "must be near symmetric positive definite (9 numbers row by row; eigenvalue ratio > 1e-3)");
+  }
+  e.mag_sigma = c.get_double("estimator.mag.sigma", e.mag_sigma, {1e-10, 1e-4});
+  e.mag_max_time_offset_s = c.get_double("estimator.mag.max_time_offset", e.mag_max_time_offset_s, {0, 1});
+}
+
 }  // namespace
 
 EstimatorConfig read_estimator_config(const Config& c) {
@@ -30,12 +64,16 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.use_gps = c.get_bool("estimator.factors.gps", e.use_gps);
   e.use_mag = c.get_bool("estimator.factors.mag", e.use_mag);
   e.use_depth = c.get_bool("estimator.depth.enabled", e.use_depth);
-  if (e.use_mag)
-    throw ConfigError(c.origin("estimator.factors.mag"), "estimator.factors.mag",
-                      "the magnetometer factor is not in the sliding window yet (issue 4): must be false");
   e.gps_max_time_offset_s = c.get_double("estimator.gps.max_time_offset", e.gps_max_time_offset_s, {0, 1});
   e.gps_huber_threshold = c.get_double("estimator.gps.huber_threshold", e.gps_huber_threshold, {0.1, 100});
   e.gps_correlation_time_s = c.get_double("estimator.gps.correlation_time", e.gps_correlation_time_s, {0, 1e4});
+  static const char* const gps_mode_names[] = {"joint", "decoupled"};
+  static const GpsMode gps_modes[] = {GpsMode::kJoint, GpsMode::kDecoupled};
+  e.gps_mode = parse_enum(c.get_string("estimator.gps.mode", "joint", {"joint", "decoupled"}), gps_mode_names,
+                          gps_modes);
+  e.gps_registration_fixes =
+      static_cast<int>(c.get_int("estimator.gps.registration_fixes", e.gps_registration_fixes, 0, 1000000));
+  read_mag(c, e);
 
   e.far_threshold_m = c.get_double("estimator.features.far_threshold", e.far_threshold_m, {0.1, 1000});
   static const char* const policy_names[] = {"free", "fixed"};
@@ -89,6 +127,10 @@ EstimatorConfig read_estimator_config(const Config& c) {
   return e;
 }
 
+Vec3 calibrated_mag_field(const EstimatorConfig& config, const Vec3& raw) {
+  return config.mag_soft_iron.partialPivLu().solve(raw - config.mag_hard_iron);
+}
+
 std::string to_string(LossKind kind) {
   switch (kind) {
     case LossKind::kCauchy: return "cauchy";
@@ -106,6 +148,8 @@ std::string to_string(LinearSolverKind kind) {
   }
   return "?";
 }
+
+std::string to_string(GpsMode mode) { return mode == GpsMode::kJoint ? "joint" : "decoupled"; }
 
 std::string to_string(FarFeaturePolicy policy) { return policy == FarFeaturePolicy::kFree ? "free" : "fixed"; }
 

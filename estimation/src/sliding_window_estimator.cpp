@@ -20,6 +20,7 @@
 #include "navaid/estimation/factors/gps_position_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
+#include "navaid/estimation/factors/magnetometer_yaw_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
 #include "navaid/estimation/feature_track_store.hpp"
@@ -50,6 +51,11 @@ constexpr double kLooseSpeedBiasSigma = 1e2;
 constexpr double kUnknownVariance = 1e4;
 // Height offset of T_ENU_W when the registration had no fix heights [m].
 constexpr double kUnregisteredHeightSigma = 100.0;
+// Prior of the magnetic heading of W: only a starting point (the first samples' heading depends
+// on the still start's roll and pitch, which the accelerometer bias tilts: a fixed reference
+// measured 0.025 rad of yaw error on lab-walk-1), and of its unused translation part.
+constexpr double kMagHeadingPriorSigma = 1.0;  // [rad]
+constexpr double kMagUnusedPriorSigma = 1.0;
 
 struct WindowState {
   std::uint64_t id = 0;
@@ -59,6 +65,8 @@ struct WindowState {
   bool keyframe = false;
   std::optional<ImuPreintegration> imu;  // from the previous state of the window
   std::optional<GpsFix> gps;             // a fix taken at this state's time (within half a frame)
+  std::optional<Vec3> mag_B;             // calibrated field at this state's time
+  bool mag_decided = false;              // the samples around t have arrived (mag_B set or none usable)
 
   SE3 T_W_B() const { return pose_from_block(pose); }
   Vec3 v() const { return Vec3(speed_bias[0], speed_bias[1], speed_bias[2]); }
@@ -106,6 +114,19 @@ struct SlidingWindowEstimator::Impl {
   bool enu_registered = false;
   double enu_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
   std::shared_ptr<MarginalizationPrior> enu_prior;  // the registration's estimate and covariance
+  // Decoupled GPS: the latest registration over the fixes (T_ENU_W outside the window).
+  std::optional<SE3> decoupled_T_ENU_W;
+  Mat4 decoupled_covariance = Mat4::Zero();
+
+  // Magnetometer: calibrated samples; the factors tie each state's heading to magnetic north
+  // through T_ENU_W when it is in the window (joint GPS, registered), otherwise through
+  // mag_alignment = [psi, 0, 0, 0]: psi, the heading of W from magnetic north, is a window block
+  // started from the first samples, with a weak prior (the translation part is unused, held at 0).
+  std::deque<MagSample> mag;
+  double mag_sigma_yaw = 0;
+  bool mag_referenced = false;
+  double mag_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
+  std::shared_ptr<MarginalizationPrior> mag_prior;
 
   std::deque<std::unique_ptr<WindowState>> window;  // oldest first; addresses stay put
   FeatureTrackStore tracks;
@@ -125,6 +146,11 @@ struct SlidingWindowEstimator::Impl {
        const std::optional<GeodeticOrigin>& geodetic_origin);
   void attach_gps(WindowState& s);
   void register_gps(const WindowState& s);
+  void reregister_gps(const WindowState& s);
+  GpsRegistration registration(const std::vector<GpsRegistrationPair>& pairs) const;
+  void attach_mag(WindowState& s);
+  void set_mag_reference(const Vec3& field_B, const SE3& T_W_B);
+  double* mag_alignment_block() { return enu_registered ? enu_alignment : mag_alignment; }
   Vec3 fix_enu(const GpsFix& fix) const;
   Impl(const Impl& other);
 
@@ -170,6 +196,14 @@ ceres::LinearSolverType solver_type(LinearSolverKind kind) {
   return ceres::DENSE_SCHUR;
 }
 
+/// Covariance of [yaw, t_x, t_y, t_z]; a registration without heights leaves t_z loosely known.
+Mat4 alignment_covariance(const GpsRegistration& r) {
+  Mat4 P = Mat4::Identity() * kUnregisteredHeightSigma * kUnregisteredHeightSigma;
+  const int n = static_cast<int>(r.covariance.rows());
+  P.topLeftCorner(n, n) = r.covariance;
+  return P;
+}
+
 }  // namespace
 
 SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorConfig& config,
@@ -203,6 +237,7 @@ SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorCon
                       "depth factors need the depth baseline and disparity sigma (calibration or "
                       "estimator.depth.baseline / estimator.depth.disparity_sigma), or estimator.depth.enabled=false");
   loss = make_loss(cfg);
+  if (cfg.use_mag) mag_sigma_yaw = magnetometer_yaw_sigma(cfg.mag_sigma, cfg.mag_reference_field_enu);
 }
 
 SlidingWindowEstimator::Impl::Impl(const Impl& o)
@@ -221,6 +256,12 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       registration_pairs(o.registration_pairs),
       enu_registered(o.enu_registered),
       enu_prior(o.enu_prior ? std::make_shared<MarginalizationPrior>(*o.enu_prior) : nullptr),
+      decoupled_T_ENU_W(o.decoupled_T_ENU_W),
+      decoupled_covariance(o.decoupled_covariance),
+      mag(o.mag),
+      mag_sigma_yaw(o.mag_sigma_yaw),
+      mag_referenced(o.mag_referenced),
+      mag_prior(o.mag_prior ? std::make_shared<MarginalizationPrior>(*o.mag_prior) : nullptr),
       tracks(o.tracks),
       imu(o.imu),
       pending(o.pending),
@@ -234,14 +275,17 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       stats(o.stats) {
   std::copy(o.extrinsic, o.extrinsic + kPoseSize, extrinsic);
   std::copy(o.enu_alignment, o.enu_alignment + kEnuAlignmentSize, enu_alignment);
+  std::copy(o.mag_alignment, o.mag_alignment + kEnuAlignmentSize, mag_alignment);
   std::unordered_map<const double*, double*> moved;
   moved[o.enu_alignment] = enu_alignment;
+  moved[o.mag_alignment] = mag_alignment;
   for (const auto& s : o.window) {
     window.push_back(std::make_unique<WindowState>(*s));
     moved[s->pose] = window.back()->pose;
     moved[s->speed_bias] = window.back()->speed_bias;
   }
   if (enu_prior) enu_prior->remap(moved);
+  if (mag_prior) mag_prior->remap(moved);
   if (o.marginal_prior) {
     marginal_prior = std::make_shared<MarginalizationPrior>(*o.marginal_prior);
     marginal_prior->remap(moved);
@@ -274,7 +318,10 @@ std::vector<StateEstimate> SlidingWindowEstimator::Impl::process(const SensorEve
   if (const auto* g = std::get_if<GpsFix>(&event)) {
     if (cfg.use_gps && g->mode != GpsFixMode::kNoFix && ellipsoidal_height_m(*g)) pending_fixes.push_back(*g);
   }
-  // Magnetometer samples: no factor in the window yet.
+  if (const auto* m = std::get_if<MagSample>(&event)) {
+    if (cfg.use_mag && m->field.allFinite() && (mag.empty() || m->t > mag.back().t))
+      mag.push_back({m->t, calibrated_mag_field(cfg, m->field)});
+  }
   while (!pending.empty() && !imu.empty() && pending.front().t + camera_to_imu_ns <= imu.back().t) {
     out.push_back(handle_frame(pending.front()));
     pending.pop_front();
@@ -339,6 +386,14 @@ StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame
   const Mat15 P0 = initial_covariance(q);
   state_prior = std::make_shared<StatePriorFactor>(s->T_W_B(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), P0);
   state_prior_id = s->id;
+  if (cfg.use_mag) {
+    // Standing still, the mean field of the still start is the best first guess of psi.
+    Vec3 field = Vec3::Zero();
+    int n = 0;
+    for (const auto& m : mag)
+      if (m.t >= t - still_ns && m.t <= t) field += m.field, ++n;
+    if (n > 0 && field.norm() > 0) set_mag_reference(field / n, s->T_W_B());
+  }
   window.push_back(std::move(s));
   add_observations(window.back()->id, frame);
   initialize_tracks();
@@ -435,11 +490,22 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
   }
 
   if (enu_prior) out.push_back({std::make_shared<MarginalizationFactor>(enu_prior), nullptr, enu_prior->blocks});
+  if (mag_prior) out.push_back({std::make_shared<MarginalizationFactor>(mag_prior), nullptr, mag_prior->blocks});
   if (enu_registered) {
     for (auto& s : window)
       if (s->gps)
         out.push_back({std::make_shared<GpsPositionFactor>(fix_enu(*s->gps), s->gps->covariance_enu, gps_lever_arm_B),
                        gps_loss, {s->pose, enu_alignment}});
+  }
+
+  for (auto& s : window) {
+    // A field without a horizontal part at the current attitude has no heading (the factor could
+    // not be evaluated): leave it out of this solve.
+    if (!s->mag_B) continue;
+    const Vec3 h = s->T_W_B().q * *s->mag_B;
+    if (h.head<2>().norm() < 1e-3 * h.norm()) continue;
+    out.push_back({std::make_shared<MagnetometerYawFactor>(*s->mag_B, cfg.mag_reference_field_enu, mag_sigma_yaw),
+                   nullptr, {s->pose, mag_alignment_block()}});
   }
 
   const std::uint64_t newest_id = window.back()->id;
@@ -559,13 +625,18 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
   } else {
     // Same quantity from the Gauss-Newton information J^T J (robust losses applied, as
     // ceres::Covariance does): Schur-complement the inverse depths (a diagonal block), then the
-    // newest state's block of the inverse. Columns: T_ENU_W when present, the states oldest first
-    // (the newest last), then every free inverse depth; blocks left out of the list are held
-    // constant by Evaluate.
+    // newest state's block of the inverse. Columns: T_ENU_W when present, the magnetometer's psi
+    // when present, the states oldest first (the newest last), then every free inverse depth;
+    // blocks left out of the list are held constant by Evaluate.
     ceres::Problem::EvaluateOptions eo;
     int state_cols = 0;
     if (with_enu) {
       eo.parameter_blocks.push_back(enu_alignment);
+      state_cols += kEnuAlignmentSize;
+    }
+    // psi is correlated with every heading: a column of its own, not held constant.
+    if (problem.HasParameterBlock(mag_alignment)) {
+      eo.parameter_blocks.push_back(mag_alignment);
       state_cols += kEnuAlignmentSize;
     }
     for (const auto& w : window) {
@@ -578,7 +649,7 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     }
     std::vector<double*> all;
     problem.GetParameterBlocks(&all);
-    std::set<const double*> states{enu_alignment};
+    std::set<const double*> states{enu_alignment, mag_alignment};
     for (const auto& w : window) states.insert(w->pose), states.insert(w->speed_bias);
     for (double* b : all)
       if (!states.count(b) && problem.ParameterBlockSize(b) == 1 && !problem.IsParameterBlockConstant(b))
@@ -645,17 +716,13 @@ void SlidingWindowEstimator::Impl::register_gps(const WindowState& s) {
   if (enu_registered || !s.gps) return;
   const SE3 T = s.T_W_B();
   registration_pairs.push_back({*s.gps, T * gps_lever_arm_B});
-  GpsRegistrationOptions options;
-  options.error_correlation_time_s = cfg.gps_correlation_time_s;  // multipath: not independent fixes
-  const GpsRegistration r = register_gps_to_world(registration_pairs, *origin, options);
+  const GpsRegistration r = registration(registration_pairs);
   if (!r.registered()) return;
   for (int i = 0; i < kEnuAlignmentSize; ++i) enu_alignment[i] = r.alignment(i);
   enu_registered = true;
   // The fixes used here are not factors in the window: their information enters as a Gaussian
   // prior on T_ENU_W (in the marginalization prior's square-root form, J = L^-1, r = 0).
-  Mat4 P = Mat4::Identity() * kUnregisteredHeightSigma * kUnregisteredHeightSigma;
-  const int n = static_cast<int>(r.covariance.rows());
-  P.topLeftCorner(n, n) = r.covariance;
+  const Mat4 P = alignment_covariance(r);
   const Eigen::LLT<Mat4> llt(0.5 * (P + P.transpose()));
   if (llt.info() != Eigen::Success) return;
   auto prior = std::make_shared<MarginalizationPrior>();
@@ -668,6 +735,71 @@ void SlidingWindowEstimator::Impl::register_gps(const WindowState& s) {
   prior->r = Eigen::Vector4d::Zero();
   enu_prior = prior;
   ++stats.gps_registrations;
+}
+
+GpsRegistration SlidingWindowEstimator::Impl::registration(const std::vector<GpsRegistrationPair>& pairs) const {
+  GpsRegistrationOptions options;
+  options.error_correlation_time_s = cfg.gps_correlation_time_s;  // multipath: not independent fixes
+  return register_gps_to_world(pairs, *origin, options);
+}
+
+void SlidingWindowEstimator::Impl::reregister_gps(const WindowState& s) {
+  if (!s.gps) return;
+  registration_pairs.push_back({*s.gps, s.T_W_B() * gps_lever_arm_B});
+  const std::size_t keep = static_cast<std::size_t>(cfg.gps_registration_fixes);
+  if (keep > 0 && registration_pairs.size() > keep)
+    registration_pairs.erase(registration_pairs.begin(),
+                             registration_pairs.end() - static_cast<std::ptrdiff_t>(keep));
+  const GpsRegistration r = registration(registration_pairs);
+  // A failed re-registration (too few or too uncertain fixes) keeps the last good alignment.
+  if (!r.registered()) return;
+  decoupled_T_ENU_W = r.T_ENU_W();
+  decoupled_covariance = alignment_covariance(r);
+  ++stats.gps_registrations;
+}
+
+void SlidingWindowEstimator::Impl::set_mag_reference(const Vec3& field_B, const SE3& T_W_B) {
+  const Vec3 h = T_W_B.q * field_B;
+  const Vec3& ref = cfg.mag_reference_field_enu;
+  // Rz(psi) turns the field's heading in W into the reference heading in ENU.
+  mag_alignment[0] = std::remainder(std::atan2(ref.y(), ref.x()) - std::atan2(h.y(), h.x()), 2.0 * M_PI);
+  mag_referenced = true;
+  auto prior = std::make_shared<MarginalizationPrior>();
+  prior->blocks = {mag_alignment};
+  prior->kinds = {BlockKind::kEuclidean};
+  prior->ambient_sizes = {kEnuAlignmentSize};
+  prior->tangent_offsets = {0};
+  prior->x0 = {std::vector<double>(mag_alignment, mag_alignment + kEnuAlignmentSize)};
+  prior->J = Eigen::Vector4d(1.0 / kMagHeadingPriorSigma, 1.0 / kMagUnusedPriorSigma, 1.0 / kMagUnusedPriorSigma,
+                             1.0 / kMagUnusedPriorSigma)
+                 .asDiagonal();
+  prior->r = Eigen::Vector4d::Zero();
+  mag_prior = prior;
+}
+
+void SlidingWindowEstimator::Impl::attach_mag(WindowState& s) {
+  if (s.mag_decided) return;
+  const Timestamp tolerance = static_cast<Timestamp>(std::llround(cfg.mag_max_time_offset_s * 1e9));
+  // Decide once every sample that could be used has arrived (deterministic, whatever the rates).
+  if (mag.empty() || mag.back().t <= s.t + tolerance) return;
+  s.mag_decided = true;
+  const auto after = std::lower_bound(mag.begin(), mag.end(), s.t,
+                                      [](const MagSample& m, Timestamp t) { return m.t < t; });
+  const MagSample* a = after != mag.begin() && s.t - std::prev(after)->t <= tolerance ? &*std::prev(after) : nullptr;
+  const MagSample* b = after != mag.end() && after->t - s.t <= tolerance ? &*after : nullptr;
+  Vec3 field;
+  if (a && b && b->t > a->t) {
+    // The field in B follows the head's rotation: interpolate rather than take the nearest.
+    const double u = static_cast<double>(s.t - a->t) / static_cast<double>(b->t - a->t);
+    field = (1.0 - u) * a->field + u * b->field;
+  } else if (a || b) {
+    field = (a && (!b || s.t - a->t <= b->t - s.t)) ? a->field : b->field;
+  } else {
+    return;
+  }
+  if (!(field.norm() > 0)) return;
+  if (!mag_referenced) set_mag_reference(field, s.T_W_B());  // no sample during the still start
+  s.mag_B = field;
 }
 
 void SlidingWindowEstimator::Impl::remove_failed_tracks() {
@@ -791,6 +923,8 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   WindowState& newest = *window.back();
   add_observations(newest.id, frame);
   if (cfg.use_gps) attach_gps(newest);
+  if (cfg.use_mag)
+    for (auto& w : window) attach_mag(*w);
   // A frame carrying a fix stays in the window, so that its GPS factor does.
   const bool keyframe = decide_keyframe(*window[window.size() - 2], newest, frame.features.size()) ||
                         (newest.gps && enu_registered);
@@ -799,7 +933,8 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   std::optional<NewestCovariance> c;
   const VisualCount count = solve(cfg.covariance_method != CovarianceMethod::kOff ? &c : nullptr);
   remove_failed_tracks();
-  if (cfg.use_gps) register_gps(newest);
+  if (cfg.use_gps && cfg.gps_mode == GpsMode::kJoint) register_gps(newest);
+  if (cfg.use_gps && cfg.gps_mode == GpsMode::kDecoupled) reregister_gps(newest);
 
   EstimatorMode mode;
   if (count.features < static_cast<std::size_t>(cfg.min_visual_features)) {
@@ -830,6 +965,9 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
     } else if (enu_prior) {  // registered after this frame's solve: the registration's covariance
       e.T_ENU_W_covariance = Mat4(enu_prior->information().inverse());
     }
+  } else if (decoupled_T_ENU_W) {
+    e.T_ENU_W = *decoupled_T_ENU_W;
+    e.T_ENU_W_covariance = decoupled_covariance;
   }
   last_estimate = e;
 
@@ -841,6 +979,8 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
     tracks.remove_frame(newest.id);
     window.pop_back();
   }
+  const Timestamp mag_keep_from = window.front()->t - seconds_to_ns(1.0);
+  while (!mag.empty() && mag.front().t < mag_keep_from) mag.pop_front();
   return e;
 }
 

@@ -323,7 +323,6 @@ TEST(EstimatorConfig, BadValuesNameTheKey) {
            {"estimator.features.far_threshold=-1", "estimator.features.far_threshold"},
            {"estimator.features.far_policy=maybe", "estimator.features.far_policy"},
            {"estimator.factors.imu=perhaps", "estimator.factors.imu"},
-           {"estimator.factors.mag=true", "estimator.factors.mag"},
            {"estimator.gps.huber_threshold=0", "estimator.gps.huber_threshold"}}) {
     const Config c = Config::parse("{}", "<test>", {set});
     const auto e = testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);

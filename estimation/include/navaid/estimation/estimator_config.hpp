@@ -6,6 +6,7 @@
 #include <string>
 
 #include "navaid/core/config.hpp"
+#include "navaid/core/geometry.hpp"
 
 namespace navaid::estimation {
 
@@ -16,6 +17,9 @@ enum class FarFeaturePolicy { kFree, kFixed };
 /// How the newest state's covariance is computed: Schur complement of the window's information
 /// (fast), ceres::Covariance (SPARSE_QR; reference, slower), or not at all.
 enum class CovarianceMethod { kSchur, kCeres, kOff };
+/// How GPS enters (factors.gps): T_ENU_W and GPS factors in the window ("joint"), or the VIO window
+/// alone with T_ENU_W re-registered over the fixes at every fix (eLabrador, "decoupled").
+enum class GpsMode { kJoint, kDecoupled };
 
 struct EstimatorConfig {
   int window_size = 10;  ///< keyframes in the window
@@ -73,6 +77,19 @@ struct EstimatorConfig {
   double gps_huber_threshold = 2.0;
   /// Correlation time of the fix errors (multipath) for the registration's covariance [s].
   double gps_correlation_time_s = 30.0;
+  GpsMode gps_mode = GpsMode::kJoint;
+  /// Decoupled: register over the newest this many fixes (0: every fix so far).
+  int gps_registration_fixes = 0;
+
+  // Magnetometer (factors.mag). The field of a sample, calibrated as soft_iron^-1 (m - hard_iron),
+  // is compared in heading with the reference field (ENU, declination included) [T].
+  Vec3 mag_reference_field_enu = Vec3(0.0, 20e-6, -45e-6);
+  Vec3 mag_hard_iron = Vec3::Zero();
+  Mat3 mag_soft_iron = Mat3::Identity();
+  double mag_sigma = 0.2e-6;  ///< white noise per axis of one sample [T]
+  /// A state gets the samples bracketing it interpolated when both lie within this time of it,
+  /// else the nearest one within it, else no magnetometer factor [s].
+  double mag_max_time_offset_s = 0.03;
 
   /// IMU-only for longer than this: mode "lost".
   double lost_after_s = 2.0;
@@ -81,8 +98,12 @@ struct EstimatorConfig {
 /// Reads `estimator.*` (defaults above for absent keys); ConfigError names the key and its range.
 EstimatorConfig read_estimator_config(const Config& config);
 
+/// A magnetometer sample calibrated with the config's iron model: soft_iron^-1 (raw - hard_iron) [T].
+Vec3 calibrated_mag_field(const EstimatorConfig& config, const Vec3& raw);
+
 std::string to_string(LossKind kind);
 std::string to_string(LinearSolverKind kind);
 std::string to_string(FarFeaturePolicy policy);
+std::string to_string(GpsMode mode);
 
 }  // namespace navaid::estimation

@@ -16,9 +16,16 @@
 //  - When the window holds more than window_size keyframes the oldest is marginalized into a prior
 //    (Marginalizer), or, with marginalization off, dropped with a tight prior holding the gauge on
 //    the new oldest keyframe.
-//  - GPS (factors.gps): fixes are registered against the VIO track (eLabrador eq. 6-7,
-//    gps_registration.hpp) to initialize T_ENU_W; from then on T_ENU_W is a window block and each
-//    fix a GpsPositionFactor on the frame taken with it ("joint").
+//  - GPS (factors.gps), gps.mode "joint": fixes are registered against the VIO track (eLabrador
+//    eq. 6-7, gps_registration.hpp) to initialize T_ENU_W; from then on T_ENU_W is a window block
+//    and each fix a GpsPositionFactor on the frame taken with it. "decoupled" (eLabrador): no GPS
+//    in the window; at every fix T_ENU_W is re-registered over the fixes so far (or the newest
+//    gps.registration_fixes) and reported with the registration's covariance.
+//  - Magnetometer (factors.mag): each state gets the calibrated field at its time (interpolated
+//    between the bracketing samples) as a MagnetometerYawFactor. Its alignment block is T_ENU_W
+//    when that is in the window (joint GPS, registered); otherwise psi, the heading of W from
+//    magnetic north, a window block started from the still start's mean field (without GPS the
+//    factor thus bounds the yaw drift relative to the start).
 //  - Output: a StateEstimate for every feature frame, with the covariance of the newest state (and
 //    of T_ENU_W) from the window's information (prior included), in StateEstimate's parametrization.
 //
@@ -45,7 +52,8 @@ struct EstimatorStatistics {
   std::size_t solves = 0;
   std::size_t marginalizations = 0;
   std::size_t marginalization_failures = 0;  ///< prior dropped, gauge pinned instead
-  std::size_t gps_registrations = 0;         ///< 1 once T_ENU_W was initialized from the fixes
+  /// joint: 1 once T_ENU_W was initialized from the fixes; decoupled: successful registrations
+  std::size_t gps_registrations = 0;
   std::size_t covariance_failures = 0;  ///< covariance could not be computed (previous one inflated)
   std::size_t features_in_last_solve = 0;
   std::size_t depth_features_in_last_solve = 0;
@@ -68,8 +76,8 @@ class SlidingWindowEstimator {
   SlidingWindowEstimator& operator=(SlidingWindowEstimator&&) noexcept;
 
   /// Feeds one event and returns the estimates that became ready (feature frames whose time the
-  /// IMU has now passed). GPS fixes are used when the gps factor is on; magnetometer samples are
-  /// accepted and not used yet; an RgbdFrame
+  /// IMU has now passed). GPS fixes are used when the gps factor is on, magnetometer samples
+  /// (in the IMU clock, like the fixes) when the mag factor is on; an RgbdFrame
   /// throws Error (the image front end does not exist yet). Throws Error on events out of time
   /// order or IMU samples without gyro data.
   std::vector<StateEstimate> process(const SensorEvent& event);

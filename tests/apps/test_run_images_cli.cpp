@@ -1,0 +1,158 @@
+// End-to-end tests of `navaid run` on image recordings: a rendered walk through the image front end
+// and the sliding-window estimator, its run folder, replay determinism, VIO without depth images,
+// and the errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "navaid/io/navaid_recording.hpp"
+#include "navaid/io/tum_trajectory.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using navaid::testing::navaid_cli;
+using navaid::testing::read_text;
+using navaid::testing::ScratchDir;
+
+namespace {
+
+class RunImagesCli : public ::testing::Test {
+ protected:
+  // One rendered walk for the suite: 8 s of lab-walk-1 (1 s still start), hand mount, 320x240 at
+  // 15 Hz to keep it quick.
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<ScratchDir>("run_images_cli");
+    const auto sim = navaid_cli("simulate --scenario lab-walk-1 --mount hand --seed 5 --threads 1 --out '" +
+                                recording().string() +
+                                "' --set duration=8 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15");
+    ASSERT_EQ(sim.status, 0) << sim.output;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+
+  static fs::path recording() { return *dir_ / "walk"; }
+  static fs::path path(const std::string& name) { return *dir_ / name; }
+  static navaid::testing::CliRun run(const fs::path& rec, const fs::path& out, const std::string& extra = {}) {
+    return navaid_cli("run --recording '" + rec.string() + "' --out '" + out.string() + "'" + extra);
+  }
+
+  static std::unique_ptr<ScratchDir> dir_;
+};
+
+std::unique_ptr<ScratchDir> RunImagesCli::dir_;
+
+TEST_F(RunImagesCli, TracksTheImagesAndEstimatesTheWalk) {
+  const fs::path out = path("run");
+  const auto result = run(recording(), out);
+  ASSERT_EQ(result.status, 0) << result.output;
+  EXPECT_NE(result.output.find("from images"), std::string::npos) << result.output;
+
+  const auto rec = navaid::io::read_navaid_recording(recording());
+  ASSERT_TRUE(rec.features.empty());
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary["input"], "images (front end)");
+  EXPECT_EQ(summary["frames"].get<std::size_t>(), rec.frames.size());
+  EXPECT_EQ(summary["frontend"]["frames_tracked"].get<std::size_t>(), rec.frames.size());
+  EXPECT_GT(summary["mode_fractions"]["rgbd-vio"].get<double>(), 0.8);
+  EXPECT_EQ(summary["mode_fractions"]["lost"].get<double>(), 0.0);
+  const auto& t = summary["time_per_frame_ms"];
+  EXPECT_GT(t["frontend_median"].get<double>(), 0.0);
+  EXPECT_GE(t["median"].get<double>(), t["frontend_median"].get<double>() * 0.5);
+
+  // The walk is estimated: a loose bound (measured 0.27 % of the 7.4 m path).
+  ASSERT_TRUE(summary.contains("ate"));
+  EXPECT_GT(summary["ate"]["path_length_m"].get<double>(), 5.0);
+  EXPECT_LT(summary["ate"]["percent_of_path"].get<double>(), 2.0);
+  const auto trajectory = navaid::io::read_tum_trajectory(out / "trajectory.tum");
+  EXPECT_GT(trajectory.size(), rec.frames.size() * 8 / 10);
+
+  // timing.csv: one row per frame with the front end's share of it.
+  std::istringstream timing(read_text(out / "timing.csv"));
+  std::string line;
+  std::getline(timing, line);
+  EXPECT_EQ(line, "t_ns,ms,mode,frontend_ms,image_load_ms");
+  std::size_t rows = 0;
+  while (std::getline(timing, line)) {
+    ++rows;
+    const auto last = line.rfind(',');
+    const auto before = line.rfind(',', last - 1);
+    ASSERT_NE(before, std::string::npos) << line;
+    EXPECT_GT(std::stod(line.substr(before + 1, last - before - 1)), 0.0) << line;
+  }
+  EXPECT_EQ(rows, rec.frames.size());
+
+  // Replay is deterministic: a second run writes the same estimates bit for bit.
+  const fs::path again = path("run-again");
+  ASSERT_EQ(run(recording(), again).status, 0);
+  EXPECT_EQ(read_text(out / "trajectory.tum"), read_text(again / "trajectory.tum"));
+  EXPECT_EQ(read_text(out / "estimates.csv"), read_text(again / "estimates.csv"));
+}
+
+TEST_F(RunImagesCli, WithoutDepthImagesItRunsAsVio) {
+  navaid::io::Recording rec = navaid::io::read_navaid_recording(recording());
+  for (auto& f : rec.frames) {
+    f.depth_path.clear();
+    f.labels_path.clear();  // not needed by the estimator; saves re-encoding them
+    f.confidence_path.clear();
+  }
+  const fs::path no_depth = path("no-depth");
+  navaid::io::write_navaid_recording(rec, no_depth);
+
+  const fs::path out = path("run-vio");
+  const auto result = run(no_depth, out);
+  ASSERT_EQ(result.status, 0) << result.output;
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_FALSE(summary["depth"].get<bool>());
+  EXPECT_EQ(summary["mode_fractions"]["rgbd-vio"].get<double>(), 0.0);
+  // Measured 82 % VIO; the rest is the still start (initializing, then imu-only until the walk
+  // gives the parallax to triangulate: no depth to start from).
+  EXPECT_GT(summary["mode_fractions"]["vio"].get<double>(), 0.7);
+  EXPECT_EQ(summary["mode_fractions"]["lost"].get<double>(), 0.0);
+  EXPECT_NE(read_text(out / "estimates.csv").find(",vio,"), std::string::npos);
+  ASSERT_TRUE(summary.contains("ate"));
+  EXPECT_LT(summary["ate"]["percent_of_path"].get<double>(), 2.0);  // measured 0.32 %
+}
+
+TEST_F(RunImagesCli, ClearErrors) {
+  // Front-end keys go through --set and are validated with the key named.
+  const auto bad = run(recording(), path("bad"), " --set frontend.klt_window_px=4");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("frontend.klt_window_px"), std::string::npos) << bad.output;
+  const auto typo = run(recording(), path("bad"), " --set frontend.max_feature=100");
+  EXPECT_NE(typo.status, 0);
+  EXPECT_NE(typo.output.find("frontend.max_feature"), std::string::npos) << typo.output;
+
+  navaid::io::Recording rec = navaid::io::read_navaid_recording(recording());
+  // Neither features nor frames: nothing to see.
+  navaid::io::Recording imu_only = rec;
+  imu_only.frames.clear();
+  navaid::io::write_navaid_recording(imu_only, path("imu-only"));
+  const auto none = run(path("imu-only"), path("bad"));
+  EXPECT_NE(none.status, 0);
+  EXPECT_NE(none.output.find("no camera data"), std::string::npos) << none.output;
+
+  // Frames of a camera the calibration's first camera is not.
+  navaid::io::Recording other = rec;
+  other.frames.resize(3);
+  for (auto& f : other.frames) {
+    f.camera = "cam9";
+    f.labels_path.clear();
+    f.confidence_path.clear();
+  }
+  navaid::io::write_navaid_recording(other, path("other-camera"));
+  const auto wrong_camera = run(path("other-camera"), path("bad"));
+  EXPECT_NE(wrong_camera.status, 0);
+  EXPECT_NE(wrong_camera.output.find("no image frames of camera"), std::string::npos) << wrong_camera.output;
+
+  // A trajectory file is not a recording.
+  const auto not_recording = run(recording() / "groundtruth.tum", path("bad"));
+  EXPECT_NE(not_recording.status, 0);
+  EXPECT_NE(not_recording.output.find("not a recording with IMU and camera data"), std::string::npos)
+      << not_recording.output;
+}
+
+}  // namespace
