@@ -15,6 +15,7 @@
 #include "navaid/io/event_stream.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/simulation/simulator.hpp"
+#include "estimator_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace navaid::estimation {
@@ -22,19 +23,11 @@ namespace {
 
 // A 15 Hz camera and 80 features per frame keep each run to about a second.
 io::Recording simulate_walk(const std::string& name, const std::vector<std::string>& extra) {
-  testing::ScratchDir dir(name);
   std::vector<std::string> overrides = {"scenario=lab-walk-1", "mount=hand", "simulation.mode=features",
                                         "duration=12", "seed=3", "sensor.camera.rate=15",
                                         "features.max_per_frame=80"};
   overrides.insert(overrides.end(), extra.begin(), extra.end());
-  const Config c = Config::parse("{}", "<test>", overrides);
-  const auto scenario = simulation::make_scenario(simulation::read_scenario_name(c));
-  const auto sim = simulation::read_simulation_config(c, scenario);
-  c.reject_unknown_keys();
-  simulation::SimulateOptions options;
-  options.threads = 1;
-  simulation::simulate(scenario, sim, dir.path(), options);
-  return io::read_navaid_recording(dir.path());
+  return testing::simulate_recording(name, overrides);
 }
 
 const io::Recording& noisy_walk() {
@@ -49,24 +42,10 @@ const io::Recording& short_walk() {
 }
 
 std::vector<StateEstimate> run(const io::Recording& rec, const std::vector<std::string>& overrides = {}) {
-  const Config c = Config::parse("{}", "<test>", overrides);
-  SlidingWindowEstimator estimator(rec.calibration, read_estimator_config(c));
-  c.reject_unknown_keys();
-  std::vector<StateEstimate> out;
-  io::SensorEventStream stream(rec);
-  while (auto e = stream.next())
-    for (auto& s : estimator.process(*e)) out.push_back(s);
-  for (auto& s : estimator.finish()) out.push_back(s);
-  return out;
+  return testing::run_estimator(rec, overrides).estimates;
 }
 
-SE3 groundtruth_at(const std::vector<GroundTruthState>& gt, Timestamp t) {
-  auto it = std::lower_bound(gt.begin(), gt.end(), t, [](const GroundTruthState& s, Timestamp x) { return s.t < x; });
-  if (it == gt.end()) return gt.back().T_W_B;
-  if (it->t == t || it == gt.begin()) return it->T_W_B;
-  const auto& a = *std::prev(it);
-  return interpolate(a.T_W_B, it->T_W_B, static_cast<double>(t - a.t) / static_cast<double>(it->t - a.t));
-}
+using testing::groundtruth_at;
 
 struct Errors {
   double rmse_m = 0;     // position error after aligning the first estimate (4-DOF) onto ground truth
@@ -240,30 +219,30 @@ TEST(SlidingWindowEstimator, RejectsImagesAndUnusableInput) {
   const auto& rec = noisy_walk();
   SlidingWindowEstimator estimator(rec.calibration, EstimatorConfig{});
   const std::string msg =
-      testing::error_message<Error>([&] { estimator.process(SensorEvent(RgbdFrame{})); }, "image frame");
+      navaid::testing::error_message<Error>([&] { estimator.process(SensorEvent(RgbdFrame{})); }, "image frame");
   EXPECT_NE(msg.find("image front end not available yet"), std::string::npos) << msg;
 
   RigCalibration no_depth = rec.calibration;
   no_depth.cameras.front().depth_baseline_m = 0;
-  testing::expect_throw<ConfigError>([&] { SlidingWindowEstimator(no_depth, EstimatorConfig{}); }, "no depth model");
+  navaid::testing::expect_throw<ConfigError>([&] { SlidingWindowEstimator(no_depth, EstimatorConfig{}); }, "no depth model");
   EstimatorConfig vio;
   vio.use_depth = false;
   SlidingWindowEstimator ok(no_depth, vio);  // VIO needs no depth model
 
   RigCalibration no_imu = rec.calibration;
   no_imu.imu.reset();
-  testing::expect_throw<ConfigError>([&] { SlidingWindowEstimator(no_imu, EstimatorConfig{}); }, "no IMU");
+  navaid::testing::expect_throw<ConfigError>([&] { SlidingWindowEstimator(no_imu, EstimatorConfig{}); }, "no IMU");
 
   SlidingWindowEstimator order(rec.calibration, EstimatorConfig{});
   order.process(SensorEvent(rec.imu[10]));
-  testing::expect_throw<Error>([&] { order.process(SensorEvent(rec.imu[5])); }, "time order");
+  navaid::testing::expect_throw<Error>([&] { order.process(SensorEvent(rec.imu[5])); }, "time order");
 }
 
 TEST(SlidingWindowEstimator, GpsFactorsPutTheTrackIntoEnu) {
   // route1 (outdoors), 30 s, white GPS noise (sigma 3 m horizontal, 5 m vertical) without
   // multipath. The simulator's world frame is ENU at the recording's origin, so after the
   // registration T_ENU_W * T_W_B must land on the ground truth, closer than the fixes themselves.
-  testing::ScratchDir dir("swe_gps");
+  navaid::testing::ScratchDir dir("swe_gps");
   const Config sc = Config::parse("{}", "<test>",
                                   {"scenario=route1", "mount=head", "simulation.mode=features", "duration=30", "seed=2",
                                    "sensor.camera.rate=10", "features.max_per_frame=60", "sensor.gps.multipath=false"});
@@ -325,7 +304,7 @@ TEST(EstimatorConfig, BadValuesNameTheKey) {
            {"estimator.factors.imu=perhaps", "estimator.factors.imu"},
            {"estimator.gps.huber_threshold=0", "estimator.gps.huber_threshold"}}) {
     const Config c = Config::parse("{}", "<test>", {set});
-    const auto e = testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
+    const auto e = navaid::testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
     if (e) {
       EXPECT_EQ(e->key(), key) << e->what();
     }

@@ -17,47 +17,23 @@
 #include "navaid/io/event_stream.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/simulation/simulator.hpp"
+#include "estimator_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace navaid::estimation {
 namespace {
 
 io::Recording simulate(const std::string& name, const std::vector<std::string>& overrides) {
-  testing::ScratchDir dir(name);
-  const Config c = Config::parse("{}", "<test>", overrides);
-  const auto scenario = simulation::make_scenario(simulation::read_scenario_name(c));
-  const auto sim = simulation::read_simulation_config(c, scenario);
-  c.reject_unknown_keys();
-  simulation::SimulateOptions options;
-  options.threads = 1;
-  simulation::simulate(scenario, sim, dir.path(), options);
-  return io::read_navaid_recording(dir.path());
+  return testing::simulate_recording(name, overrides);
 }
 
-struct RunResult {
-  std::vector<StateEstimate> estimates;
-  EstimatorStatistics stats;
-};
+using RunResult = testing::EstimatorRun;
 
 RunResult run(const io::Recording& rec, const std::vector<std::string>& overrides) {
-  const Config c = Config::parse("{}", "<test>", overrides);
-  SlidingWindowEstimator estimator(rec.calibration, read_estimator_config(c), {}, rec.origin);
-  c.reject_unknown_keys();
-  RunResult r;
-  io::SensorEventStream stream(rec);
-  while (auto e = stream.next())
-    for (auto& s : estimator.process(*e)) r.estimates.push_back(s);
-  r.stats = estimator.statistics();
-  return r;
+  return testing::run_estimator(rec, overrides, /*flush=*/false);
 }
 
-SE3 groundtruth_at(const std::vector<GroundTruthState>& gt, Timestamp t) {
-  auto it = std::lower_bound(gt.begin(), gt.end(), t, [](const GroundTruthState& s, Timestamp x) { return s.t < x; });
-  if (it == gt.end()) return gt.back().T_W_B;
-  if (it->t == t || it == gt.begin()) return it->T_W_B;
-  const auto& a = *std::prev(it);
-  return interpolate(a.T_W_B, it->T_W_B, static_cast<double>(t - a.t) / static_cast<double>(it->t - a.t));
-}
+using testing::groundtruth_at;
 
 // Heading error of every estimate after the 4-DOF alignment fixed by the first estimate (the
 // estimator's W has yaw 0 at the start): the yaw drift since the start [rad].
@@ -193,7 +169,7 @@ TEST(SlidingWindowMag, BadConfigNamesTheKey) {
            {"estimator.gps.mode=loose", "estimator.gps.mode"},
            {"estimator.gps.registration_fixes=-2", "estimator.gps.registration_fixes"}}) {
     const Config c = Config::parse("{}", "<test>", {set});
-    const auto e = testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
+    const auto e = navaid::testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
     if (e) {
       // A bad element of a sequence is named with its index, e.g. "estimator.mag.hard_iron[2]".
       EXPECT_EQ(e->key().rfind(key, 0), 0u) << e->what();
