@@ -247,6 +247,11 @@ void run(const RunArgs& a) {
   j["marginalizations"] = st.marginalizations;
   j["marginalization_failures"] = st.marginalization_failures;
   j["covariance_failures"] = st.covariance_failures;
+  if (est_config.estimate_extrinsic) {
+    const SE3 T = estimator.camera_extrinsic();
+    j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},
+                                   {"q_wxyz", {T.q.w(), T.q.x(), T.q.y(), T.q.z()}}};
+  }
   std::map<std::string, std::size_t> modes;
   for (const auto& e : estimates) ++modes[std::string(to_string(e.mode))];
   nlohmann::ordered_json fractions = nlohmann::ordered_json::object();

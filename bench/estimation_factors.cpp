@@ -1,6 +1,7 @@
 // Cost of the estimator's inner loops: preintegrating the IMU samples between two keyframes
 // (200 samples = 1 s at 200 Hz; once per keyframe, again on repropagation) and evaluating each
-// factor with all Jacobians (every factor, every solver iteration).
+// factor with all Jacobians (every factor, every solver iteration), the visual ones also with the
+// camera-IMU time offset.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -13,6 +14,7 @@
 #include "navaid/estimation/factors/magnetometer_yaw_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
+#include "navaid/estimation/factors/time_offset_factors.hpp"
 #include "navaid/estimation/imu_preintegration.hpp"
 
 namespace {
@@ -57,6 +59,7 @@ struct Blocks {
   double sb_a[kSpeedBiasSize] = {0.5, 0.1, 0.0, 1e-3, 0, 0, 0.01, 0, 0};
   double sb_b[kSpeedBiasSize] = {0.6, 0.1, 0.0, 1e-3, 0, 0, 0.01, 0, 0};
   double lambda[1] = {0.3};
+  double td[1] = {0.004};
   double align[4] = {0.4, 1.0, 2.0, 0.0};
   Blocks() {
     pose_to_block(SE3(quat_from_rpy(0.1, 0.05, 0.3), Vec3(1, 2, 1.7)), pose_a);
@@ -107,6 +110,24 @@ void BM_Depth3dFactor(benchmark::State& state) {
   evaluate<3>(state, f, {b.pose_a, b.pose_b, b.extrinsic, b.lambda});
 }
 BENCHMARK(BM_Depth3dFactor);
+
+// The same features with the time offset: the plain factor plus moving two measurements.
+const TimedObservation kAnchor{{0.1, -0.05}, {0.4, 0.1}, 0.0};
+const TimedObservation kTarget{{0.12, -0.04}, {0.35, 0.12}, 0.002};
+
+void BM_ReprojectionTdFactor(benchmark::State& state) {
+  Blocks b;
+  const ReprojectionTdFactor f(kAnchor, kTarget, 525.0, 1.5);
+  evaluate<2>(state, f, {b.pose_a, b.pose_b, b.extrinsic, b.lambda, b.td});
+}
+BENCHMARK(BM_ReprojectionTdFactor);
+
+void BM_Depth3dTdFactor(benchmark::State& state) {
+  Blocks b;
+  const Depth3dTdFactor f(kAnchor, kTarget, 3.1, -0.4, 525.0, inverse_depth_sigma(0.2, 525.0, 0.075));
+  evaluate<3>(state, f, {b.pose_a, b.pose_b, b.extrinsic, b.lambda, b.td});
+}
+BENCHMARK(BM_Depth3dTdFactor);
 
 void BM_GpsPositionFactor(benchmark::State& state) {
   Blocks b;

@@ -71,6 +71,7 @@ EstimatorConfig read_estimator_config(const Config& c) {
   static const GpsMode gps_modes[] = {GpsMode::kJoint, GpsMode::kDecoupled};
   e.gps_mode = parse_enum(c.get_string("estimator.gps.mode", "joint", {"joint", "decoupled"}), gps_mode_names,
                           gps_modes);
+  e.gps_multipath_fraction = c.get_double("estimator.gps.multipath_fraction", e.gps_multipath_fraction, {0, 0.95});
   e.gps_registration_fixes =
       static_cast<int>(c.get_int("estimator.gps.registration_fixes", e.gps_registration_fixes, 0, 1000000));
   read_mag(c, e);
@@ -124,6 +125,14 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.init_sigma_accel_bias =
       c.get_double("estimator.initialization.sigma_accel_bias", e.init_sigma_accel_bias, {1e-8, 10});
   e.lost_after_s = c.get_double("estimator.lost_after", e.lost_after_s, {0, kInf});
+
+  e.estimate_extrinsic = c.get_bool("estimator.extrinsic.estimate", e.estimate_extrinsic);
+  e.extrinsic_sigma_rotation_rad =
+      c.get_double("estimator.extrinsic.sigma_rotation", e.extrinsic_sigma_rotation_rad, {1e-6, 1});
+  e.extrinsic_sigma_translation_m =
+      c.get_double("estimator.extrinsic.sigma_translation", e.extrinsic_sigma_translation_m, {1e-6, 1});
+  e.estimate_time_offset = c.get_bool("estimator.time_offset.estimate", e.estimate_time_offset);
+  e.time_offset_sigma_s = c.get_double("estimator.time_offset.sigma", e.time_offset_sigma_s, {1e-6, 0.1});
   return e;
 }
 

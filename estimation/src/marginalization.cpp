@@ -181,6 +181,23 @@ void block_minus(BlockKind kind, int ambient_size, const double* x, const double
   Eigen::Map<Vec3>(delta + 3) = half_log(relative_quaternion(x + 3, x0 + 3, sign));
 }
 
+MarginalizationPrior gaussian_block_prior(double* block, BlockKind kind, int ambient_size,
+                                          const Eigen::MatrixXd& sqrt_information) {
+  const int n = tangent_size(kind, ambient_size);
+  if (sqrt_information.rows() != n || sqrt_information.cols() != n)
+    throw Error("gaussian_block_prior: the square-root information must be " + std::to_string(n) + "x" +
+                std::to_string(n));
+  MarginalizationPrior prior;
+  prior.blocks = {block};
+  prior.kinds = {kind};
+  prior.ambient_sizes = {ambient_size};
+  prior.tangent_offsets = {0};
+  prior.x0 = {std::vector<double>(block, block + ambient_size)};
+  prior.J = sqrt_information;
+  prior.r = Eigen::VectorXd::Zero(n);
+  return prior;
+}
+
 int MarginalizationPrior::index_of(const double* block) const {
   const auto it = std::find(blocks.begin(), blocks.end(), block);
   return it == blocks.end() ? -1 : static_cast<int>(it - blocks.begin());

@@ -17,6 +17,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/core/geodesy.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
+#include "navaid/estimation/factors/gauss_markov_factor.hpp"
 #include "navaid/estimation/factors/gps_position_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
@@ -28,153 +29,9 @@
 #include "navaid/estimation/imu_preintegration.hpp"
 #include "navaid/estimation/marginalization.hpp"
 #include "navaid/estimation/state_prior_factor.hpp"
+#include "sliding_window/impl.hpp"
 
 namespace navaid::estimation {
-
-namespace {
-
-// Re-integrate a preintegration when the bias estimate left its linearization point this far
-// (the first-order correction is good well beyond; VINS uses similar values).
-constexpr double kRepropagateGyro = 5e-3;   // [rad/s]
-constexpr double kRepropagateAccel = 5e-2;  // [m/s^2]
-// Feature depths outside this range after a solve are failures (VINS-Mono removes them too).
-constexpr double kMinFeatureDepth = 0.05;  // [m]
-constexpr double kMaxFeatureDepth = 500.0;
-// Triangulation needs this much angle between the extreme rays.
-constexpr double kMinTriangulationAngle = 1.0 * M_PI / 180.0;
-// Gauge prior of the first state (position and yaw define W) and, with marginalization off, of
-// the oldest keyframe that holds the window in place.
-constexpr double kGaugeSigma = 1e-3;
-constexpr double kPinnedPoseSigma = 1e-4;
-constexpr double kLooseSpeedBiasSigma = 1e2;
-// Covariance reported before initialization (nothing is known).
-constexpr double kUnknownVariance = 1e4;
-// Height offset of T_ENU_W when the registration had no fix heights [m].
-constexpr double kUnregisteredHeightSigma = 100.0;
-// Prior of the magnetic heading of W: only a starting point (the first samples' heading depends
-// on the still start's roll and pitch, which the accelerometer bias tilts: a fixed reference
-// measured 0.025 rad of yaw error on lab-walk-1), and of its unused translation part.
-constexpr double kMagHeadingPriorSigma = 1.0;  // [rad]
-constexpr double kMagUnusedPriorSigma = 1.0;
-
-struct WindowState {
-  std::uint64_t id = 0;
-  Timestamp t = 0;  // IMU clock
-  double pose[kPoseSize] = {0, 0, 0, 0, 0, 0, 1};
-  double speed_bias[kSpeedBiasSize] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-  bool keyframe = false;
-  std::optional<ImuPreintegration> imu;  // from the previous state of the window
-  std::optional<GpsFix> gps;             // a fix taken at this state's time (within half a frame)
-  std::optional<Vec3> mag_B;             // calibrated field at this state's time
-  bool mag_decided = false;              // the samples around t have arrived (mag_B set or none usable)
-
-  SE3 T_W_B() const { return pose_from_block(pose); }
-  Vec3 v() const { return Vec3(speed_bias[0], speed_bias[1], speed_bias[2]); }
-  Vec3 b_g() const { return Vec3(speed_bias[3], speed_bias[4], speed_bias[5]); }
-  Vec3 b_a() const { return Vec3(speed_bias[6], speed_bias[7], speed_bias[8]); }
-};
-
-struct Residual {
-  std::shared_ptr<ceres::CostFunction> cost;
-  std::shared_ptr<ceres::LossFunction> loss;
-  std::vector<double*> blocks;
-};
-
-struct NewestCovariance {
-  Mat15 state;
-  std::optional<Mat4> enu_alignment;  // [yaw, t_x, t_y, t_z] when T_ENU_W is in the window
-};
-
-struct VisualCount {
-  std::size_t features = 0;        // tracks with factors that the newest frame observes
-  std::size_t depth_features = 0;  // ... of which with a depth factor
-  std::size_t all_features = 0;    // tracks with factors in the window
-};
-
-}  // namespace
-
-struct SlidingWindowEstimator::Impl {
-  EstimatorConfig cfg;
-  CameraCalibration camera;
-  std::shared_ptr<const CameraModel> camera_model;
-  ImuNoise imu_noise;
-  double focal_px = 0;
-  double sigma_lambda = 0;  // 0: no depth noise model (depth factors unusable)
-  Timestamp camera_to_imu_ns = 0;
-  double extrinsic[kPoseSize];
-  std::shared_ptr<ceres::LossFunction> loss;
-
-  // GPS: fixes wait for the frame nearest to them; T_ENU_W = [yaw, t] joins the window once the
-  // eLabrador registration of the first fixes against the VIO track succeeds.
-  std::optional<GeodeticOrigin> origin;
-  Vec3 gps_lever_arm_B = Vec3::Zero();
-  std::shared_ptr<ceres::LossFunction> gps_loss;
-  std::deque<GpsFix> pending_fixes;
-  std::vector<GpsRegistrationPair> registration_pairs;
-  bool enu_registered = false;
-  double enu_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
-  std::shared_ptr<MarginalizationPrior> enu_prior;  // the registration's estimate and covariance
-  // Decoupled GPS: the latest registration over the fixes (T_ENU_W outside the window).
-  std::optional<SE3> decoupled_T_ENU_W;
-  Mat4 decoupled_covariance = Mat4::Zero();
-
-  // Magnetometer: calibrated samples; the factors tie each state's heading to magnetic north
-  // through T_ENU_W when it is in the window (joint GPS, registered), otherwise through
-  // mag_alignment = [psi, 0, 0, 0]: psi, the heading of W from magnetic north, is a window block
-  // started from the first samples, with a weak prior (the translation part is unused, held at 0).
-  std::deque<MagSample> mag;
-  double mag_sigma_yaw = 0;
-  bool mag_referenced = false;
-  double mag_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
-  std::shared_ptr<MarginalizationPrior> mag_prior;
-
-  std::deque<std::unique_ptr<WindowState>> window;  // oldest first; addresses stay put
-  FeatureTrackStore tracks;
-  std::vector<ImuSample> imu;
-  std::deque<FeatureFrame> pending;
-  std::shared_ptr<MarginalizationPrior> marginal_prior;
-  std::shared_ptr<StatePriorFactor> state_prior;
-  std::uint64_t state_prior_id = 0;
-  std::uint64_t next_id = 0;
-  bool initialized = false;
-  Timestamp last_event_t = std::numeric_limits<Timestamp>::min();
-  std::optional<Timestamp> imu_only_since;
-  std::optional<StateEstimate> last_estimate;
-  EstimatorStatistics stats;
-
-  Impl(const RigCalibration& rig, const EstimatorConfig& config, const std::string& camera_name,
-       const std::optional<GeodeticOrigin>& geodetic_origin);
-  void attach_gps(WindowState& s);
-  void register_gps(const WindowState& s);
-  void reregister_gps(const WindowState& s);
-  GpsRegistration registration(const std::vector<GpsRegistrationPair>& pairs) const;
-  void attach_mag(WindowState& s);
-  void set_mag_reference(const Vec3& field_B, const SE3& T_W_B);
-  double* mag_alignment_block() { return enu_registered ? enu_alignment : mag_alignment; }
-  Vec3 fix_enu(const GpsFix& fix) const;
-  Impl(const Impl& other);
-
-  std::vector<StateEstimate> process(const SensorEvent& event);
-  StateEstimate handle_frame(const FeatureFrame& frame);
-  StateEstimate initialize(const FeatureFrame& frame, Timestamp t);
-  void add_observations(std::uint64_t frame_id, const FeatureFrame& frame);
-  bool decide_keyframe(const WindowState& last_keyframe, const WindowState& newest, std::size_t observed) const;
-  void initialize_tracks();
-  std::optional<double> triangulate(const FeatureTrack& track) const;
-  const WindowState* state(std::uint64_t id) const;
-  SE3 T_W_C(const WindowState& s) const { return s.T_W_B() * pose_from_block(extrinsic); }
-
-  std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* fixed_inverse_depths);
-  /// Solves the window; with `covariance`, also the newest state's covariance (nullopt on failure).
-  VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
-  std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem);
-  void remove_failed_tracks();
-  StateEstimate estimate_of(const WindowState& s, Timestamp frame_t, EstimatorMode mode, const Mat15& cov) const;
-  void slide_out_oldest();
-  void reanchor_tracks_of(const WindowState& leaving);
-  void trim_imu();
-  Mat15 initial_covariance(const Quat& q) const;
-};
 
 namespace {
 
@@ -194,14 +51,6 @@ ceres::LinearSolverType solver_type(LinearSolverKind kind) {
     case LinearSolverKind::kSparseNormalCholesky: return ceres::SPARSE_NORMAL_CHOLESKY;
   }
   return ceres::DENSE_SCHUR;
-}
-
-/// Covariance of [yaw, t_x, t_y, t_z]; a registration without heights leaves t_z loosely known.
-Mat4 alignment_covariance(const GpsRegistration& r) {
-  Mat4 P = Mat4::Identity() * kUnregisteredHeightSigma * kUnregisteredHeightSigma;
-  const int n = static_cast<int>(r.covariance.rows());
-  P.topLeftCorner(n, n) = r.covariance;
-  return P;
 }
 
 }  // namespace
@@ -228,6 +77,14 @@ SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorCon
   focal_px = std::sqrt(camera.fx * camera.fy);
   camera_to_imu_ns = static_cast<Timestamp>(std::llround(camera.time_offset_s * 1e9));
   pose_to_block(camera.T_B_C, extrinsic);
+  if (cfg.estimate_extrinsic) {
+    // Pose tangent [dp, d] with rotation vector 2 d (pose_parametrization.hpp).
+    Eigen::Matrix<double, 6, 1> inv_sigma;
+    inv_sigma << Vec3::Constant(1.0 / cfg.extrinsic_sigma_translation_m),
+        Vec3::Constant(2.0 / cfg.extrinsic_sigma_rotation_rad);
+    extrinsic_prior = std::make_shared<MarginalizationPrior>(
+        gaussian_block_prior(extrinsic, BlockKind::kPose, kPoseSize, Eigen::MatrixXd(inv_sigma.asDiagonal())));
+  }
 
   const double sigma_d = cfg.disparity_sigma_px > 0 ? cfg.disparity_sigma_px : camera.depth_disparity_sigma_px;
   const double baseline = cfg.depth_baseline_m > 0 ? cfg.depth_baseline_m : camera.depth_baseline_m;
@@ -248,6 +105,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       focal_px(o.focal_px),
       sigma_lambda(o.sigma_lambda),
       camera_to_imu_ns(o.camera_to_imu_ns),
+      extrinsic_prior(o.extrinsic_prior ? std::make_shared<MarginalizationPrior>(*o.extrinsic_prior) : nullptr),
       loss(o.loss),
       origin(o.origin),
       gps_lever_arm_B(o.gps_lever_arm_B),
@@ -256,6 +114,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       registration_pairs(o.registration_pairs),
       enu_registered(o.enu_registered),
       enu_prior(o.enu_prior ? std::make_shared<MarginalizationPrior>(*o.enu_prior) : nullptr),
+      last_gps_bias_state(o.last_gps_bias_state),
       decoupled_T_ENU_W(o.decoupled_T_ENU_W),
       decoupled_covariance(o.decoupled_covariance),
       mag(o.mag),
@@ -279,13 +138,21 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
   std::unordered_map<const double*, double*> moved;
   moved[o.enu_alignment] = enu_alignment;
   moved[o.mag_alignment] = mag_alignment;
+  moved[o.extrinsic] = extrinsic;
   for (const auto& s : o.window) {
     window.push_back(std::make_unique<WindowState>(*s));
     moved[s->pose] = window.back()->pose;
     moved[s->speed_bias] = window.back()->speed_bias;
+    moved[s->gps_bias] = window.back()->gps_bias;
   }
+  for (auto& s : window)
+    if (s->gps_bias_prior) {
+      s->gps_bias_prior = std::make_shared<MarginalizationPrior>(*s->gps_bias_prior);
+      s->gps_bias_prior->remap(moved);
+    }
   if (enu_prior) enu_prior->remap(moved);
   if (mag_prior) mag_prior->remap(moved);
+  if (extrinsic_prior) extrinsic_prior->remap(moved);
   if (o.marginal_prior) {
     marginal_prior = std::make_shared<MarginalizationPrior>(*o.marginal_prior);
     marginal_prior->remap(moved);
@@ -491,11 +358,30 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
 
   if (enu_prior) out.push_back({std::make_shared<MarginalizationFactor>(enu_prior), nullptr, enu_prior->blocks});
   if (mag_prior) out.push_back({std::make_shared<MarginalizationFactor>(mag_prior), nullptr, mag_prior->blocks});
+  if (extrinsic_prior)
+    out.push_back({std::make_shared<MarginalizationFactor>(extrinsic_prior), nullptr, extrinsic_prior->blocks});
   if (enu_registered) {
-    for (auto& s : window)
-      if (s->gps)
+    for (auto& s : window) {
+      if (!s->gps) continue;
+      if (!s->has_gps_bias) {
         out.push_back({std::make_shared<GpsPositionFactor>(fix_enu(*s->gps), s->gps->covariance_enu, gps_lever_arm_B),
                        gps_loss, {s->pose, enu_alignment}});
+        continue;
+      }
+      const Mat3 white = s->gps->covariance_enu - s->gps_multipath_covariance;
+      out.push_back({std::make_shared<GpsPositionBiasFactor>(fix_enu(*s->gps), white, gps_lever_arm_B), gps_loss,
+                     {s->pose, enu_alignment, s->gps_bias}});
+      if (s->gps_bias_prior) {
+        out.push_back({std::make_shared<MarginalizationFactor>(s->gps_bias_prior), nullptr, s->gps_bias_prior->blocks});
+      } else if (s->gps_bias_previous) {
+        // A predecessor that left the window passed its link on in the marginalization prior.
+        for (auto& p : window)
+          if (p->id == *s->gps_bias_previous)
+            out.push_back({std::make_shared<GaussMarkovFactor>(ns_to_seconds(s->t - p->t), cfg.gps_correlation_time_s,
+                                                               s->gps_multipath_covariance),
+                           nullptr, {p->gps_bias, s->gps_bias}});
+      }
+    }
   }
 
   for (auto& s : window) {
@@ -577,7 +463,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
     if (!cfg.use_imu) problem.SetParameterBlockConstant(s->speed_bias);
   }
   problem.AddParameterBlock(extrinsic, kPoseSize, manifold.get());
-  problem.SetParameterBlockConstant(extrinsic);
+  if (!cfg.estimate_extrinsic) problem.SetParameterBlockConstant(extrinsic);
   for (const auto& r : residuals) problem.AddResidualBlock(r.cost.get(), r.loss.get(), r.blocks);
   for (double* lambda : fixed) problem.SetParameterBlockConstant(lambda);
   if (!cfg.use_imu && !state_prior && (!marginal_prior || marginal_prior->empty()))
@@ -597,209 +483,6 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   stats.depth_features_in_last_solve = count.depth_features;
   if (covariance) *covariance = newest_covariance(problem);
   return count;
-}
-
-std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(ceres::Problem& problem) {
-  const WindowState& s = *window.back();
-  const bool with_enu = problem.HasParameterBlock(enu_alignment);
-  NewestCovariance out;
-  Eigen::Matrix<double, 15, 15> C;  // Ceres tangent [dp, d, v, b_g, b_a]
-  if (cfg.covariance_method == CovarianceMethod::kCeres) {
-    if (problem.IsParameterBlockConstant(s.speed_bias)) return std::nullopt;
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::SPARSE_QR;
-    co.num_threads = 1;
-    ceres::Covariance covariance(co);
-    std::vector<std::pair<const double*, const double*>> pairs = {
-        {s.pose, s.pose}, {s.pose, s.speed_bias}, {s.speed_bias, s.speed_bias}};
-    if (with_enu) pairs.emplace_back(enu_alignment, enu_alignment);
-    if (!covariance.Compute(pairs, &problem)) return std::nullopt;
-    Eigen::Matrix<double, 15, 15, Eigen::RowMajor> Cr;
-    if (!covariance.GetCovarianceMatrixInTangentSpace({s.pose, s.speed_bias}, Cr.data())) return std::nullopt;
-    C = Cr;
-    if (with_enu) {
-      Eigen::Matrix<double, 4, 4, Eigen::RowMajor> A;
-      if (!covariance.GetCovarianceBlock(enu_alignment, enu_alignment, A.data())) return std::nullopt;
-      out.enu_alignment = A;
-    }
-  } else {
-    // Same quantity from the Gauss-Newton information J^T J (robust losses applied, as
-    // ceres::Covariance does): Schur-complement the inverse depths (a diagonal block), then the
-    // newest state's block of the inverse. Columns: T_ENU_W when present, the magnetometer's psi
-    // when present, the states oldest first (the newest last), then every free inverse depth;
-    // blocks left out of the list are held constant by Evaluate.
-    ceres::Problem::EvaluateOptions eo;
-    int state_cols = 0;
-    if (with_enu) {
-      eo.parameter_blocks.push_back(enu_alignment);
-      state_cols += kEnuAlignmentSize;
-    }
-    // psi is correlated with every heading: a column of its own, not held constant.
-    if (problem.HasParameterBlock(mag_alignment)) {
-      eo.parameter_blocks.push_back(mag_alignment);
-      state_cols += kEnuAlignmentSize;
-    }
-    for (const auto& w : window) {
-      eo.parameter_blocks.push_back(w->pose);
-      state_cols += kPoseTangentSize;
-      if (!problem.IsParameterBlockConstant(w->speed_bias)) {
-        eo.parameter_blocks.push_back(w->speed_bias);
-        state_cols += kSpeedBiasSize;
-      }
-    }
-    std::vector<double*> all;
-    problem.GetParameterBlocks(&all);
-    std::set<const double*> states{enu_alignment, mag_alignment};
-    for (const auto& w : window) states.insert(w->pose), states.insert(w->speed_bias);
-    for (double* b : all)
-      if (!states.count(b) && problem.ParameterBlockSize(b) == 1 && !problem.IsParameterBlockConstant(b))
-        eo.parameter_blocks.push_back(b);
-    ceres::CRSMatrix crs;
-    if (!problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
-    const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> J(
-        crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
-        crs.values.data());
-    const Eigen::MatrixXd H = Eigen::MatrixXd(Eigen::SparseMatrix<double>(J.transpose() * J));
-    const int nl = crs.num_cols - state_cols;
-    Eigen::MatrixXd S = H.topLeftCorner(state_cols, state_cols);
-    if (nl > 0) {
-      Eigen::VectorXd inv_l(nl);
-      for (int k = 0; k < nl; ++k) {
-        const double h = H(state_cols + k, state_cols + k);
-        inv_l(k) = h > 1e-12 ? 1.0 / h : 0.0;  // an unobserved depth carries no information
-      }
-      const Eigen::MatrixXd H_sl = H.topRightCorner(state_cols, nl);
-      S.noalias() -= H_sl * inv_l.asDiagonal() * H_sl.transpose();
-    }
-    const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
-    if (llt.info() != Eigen::Success) return std::nullopt;
-    // The newest state's columns are the last ones: its pose, and its speed-bias unless constant.
-    const int newest = problem.IsParameterBlockConstant(s.speed_bias) ? kPoseTangentSize : 15;
-    const int enu = with_enu ? kEnuAlignmentSize : 0;
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(state_cols, newest + enu);
-    E.bottomLeftCorner(newest, newest).setIdentity();
-    if (enu) E.topRightCorner(enu, enu).setIdentity();
-    const Eigen::MatrixXd X = llt.solve(E);
-    C.setZero();
-    C.topLeftCorner(newest, newest) = X.bottomLeftCorner(newest, newest);
-    // A constant speed-bias (IMU factors off) is not estimated: report it as unknown.
-    if (newest < 15) C.bottomRightCorner<9, 9>() = Eigen::Matrix<double, 9, 9>::Identity() * kUnknownVariance;
-    if (enu) out.enu_alignment = Mat4(X.topRightCorner(enu, enu));
-  }
-  // Ceres' tangent [dp, d, v, b_g, b_a], q (+) d = Exp(2 d) q, to StateEstimate's
-  // [dtheta_right, dp, dv, db_g, db_a]: dtheta_right = 2 R^T d.
-  Mat15 T = Mat15::Zero();
-  T.block<3, 3>(0, 3) = 2.0 * s.T_W_B().rotation().transpose();
-  T.block<3, 3>(3, 0).setIdentity();
-  T.block<9, 9>(6, 6).setIdentity();
-  Mat15 P = T * C * T.transpose();
-  out.state = 0.5 * (P + P.transpose());
-  if (!out.state.allFinite() || (out.enu_alignment && !out.enu_alignment->allFinite())) return std::nullopt;
-  return out;
-}
-
-Vec3 SlidingWindowEstimator::Impl::fix_enu(const GpsFix& fix) const {
-  // The registration's eq. 6 conversion, so that factors and registration agree.
-  return geodesic_enu({fix}, *origin).front();
-}
-
-void SlidingWindowEstimator::Impl::attach_gps(WindowState& s) {
-  const Timestamp tolerance = static_cast<Timestamp>(std::llround(cfg.gps_max_time_offset_s * 1e9));
-  while (!pending_fixes.empty() && pending_fixes.front().t < s.t - tolerance) pending_fixes.pop_front();  // missed
-  if (!pending_fixes.empty() && pending_fixes.front().t <= s.t + tolerance) {
-    s.gps = pending_fixes.front();
-    pending_fixes.pop_front();
-  }
-}
-
-void SlidingWindowEstimator::Impl::register_gps(const WindowState& s) {
-  if (enu_registered || !s.gps) return;
-  const SE3 T = s.T_W_B();
-  registration_pairs.push_back({*s.gps, T * gps_lever_arm_B});
-  const GpsRegistration r = registration(registration_pairs);
-  if (!r.registered()) return;
-  for (int i = 0; i < kEnuAlignmentSize; ++i) enu_alignment[i] = r.alignment(i);
-  enu_registered = true;
-  // The fixes used here are not factors in the window: their information enters as a Gaussian
-  // prior on T_ENU_W (in the marginalization prior's square-root form, J = L^-1, r = 0).
-  const Mat4 P = alignment_covariance(r);
-  const Eigen::LLT<Mat4> llt(0.5 * (P + P.transpose()));
-  if (llt.info() != Eigen::Success) return;
-  auto prior = std::make_shared<MarginalizationPrior>();
-  prior->blocks = {enu_alignment};
-  prior->kinds = {BlockKind::kEuclidean};
-  prior->ambient_sizes = {kEnuAlignmentSize};
-  prior->tangent_offsets = {0};
-  prior->x0 = {std::vector<double>(enu_alignment, enu_alignment + kEnuAlignmentSize)};
-  prior->J = llt.matrixL().solve(Mat4::Identity());
-  prior->r = Eigen::Vector4d::Zero();
-  enu_prior = prior;
-  ++stats.gps_registrations;
-}
-
-GpsRegistration SlidingWindowEstimator::Impl::registration(const std::vector<GpsRegistrationPair>& pairs) const {
-  GpsRegistrationOptions options;
-  options.error_correlation_time_s = cfg.gps_correlation_time_s;  // multipath: not independent fixes
-  return register_gps_to_world(pairs, *origin, options);
-}
-
-void SlidingWindowEstimator::Impl::reregister_gps(const WindowState& s) {
-  if (!s.gps) return;
-  registration_pairs.push_back({*s.gps, s.T_W_B() * gps_lever_arm_B});
-  const std::size_t keep = static_cast<std::size_t>(cfg.gps_registration_fixes);
-  if (keep > 0 && registration_pairs.size() > keep)
-    registration_pairs.erase(registration_pairs.begin(),
-                             registration_pairs.end() - static_cast<std::ptrdiff_t>(keep));
-  const GpsRegistration r = registration(registration_pairs);
-  // A failed re-registration (too few or too uncertain fixes) keeps the last good alignment.
-  if (!r.registered()) return;
-  decoupled_T_ENU_W = r.T_ENU_W();
-  decoupled_covariance = alignment_covariance(r);
-  ++stats.gps_registrations;
-}
-
-void SlidingWindowEstimator::Impl::set_mag_reference(const Vec3& field_B, const SE3& T_W_B) {
-  const Vec3 h = T_W_B.q * field_B;
-  const Vec3& ref = cfg.mag_reference_field_enu;
-  // Rz(psi) turns the field's heading in W into the reference heading in ENU.
-  mag_alignment[0] = std::remainder(std::atan2(ref.y(), ref.x()) - std::atan2(h.y(), h.x()), 2.0 * M_PI);
-  mag_referenced = true;
-  auto prior = std::make_shared<MarginalizationPrior>();
-  prior->blocks = {mag_alignment};
-  prior->kinds = {BlockKind::kEuclidean};
-  prior->ambient_sizes = {kEnuAlignmentSize};
-  prior->tangent_offsets = {0};
-  prior->x0 = {std::vector<double>(mag_alignment, mag_alignment + kEnuAlignmentSize)};
-  prior->J = Eigen::Vector4d(1.0 / kMagHeadingPriorSigma, 1.0 / kMagUnusedPriorSigma, 1.0 / kMagUnusedPriorSigma,
-                             1.0 / kMagUnusedPriorSigma)
-                 .asDiagonal();
-  prior->r = Eigen::Vector4d::Zero();
-  mag_prior = prior;
-}
-
-void SlidingWindowEstimator::Impl::attach_mag(WindowState& s) {
-  if (s.mag_decided) return;
-  const Timestamp tolerance = static_cast<Timestamp>(std::llround(cfg.mag_max_time_offset_s * 1e9));
-  // Decide once every sample that could be used has arrived (deterministic, whatever the rates).
-  if (mag.empty() || mag.back().t <= s.t + tolerance) return;
-  s.mag_decided = true;
-  const auto after = std::lower_bound(mag.begin(), mag.end(), s.t,
-                                      [](const MagSample& m, Timestamp t) { return m.t < t; });
-  const MagSample* a = after != mag.begin() && s.t - std::prev(after)->t <= tolerance ? &*std::prev(after) : nullptr;
-  const MagSample* b = after != mag.end() && after->t - s.t <= tolerance ? &*after : nullptr;
-  Vec3 field;
-  if (a && b && b->t > a->t) {
-    // The field in B follows the head's rotation: interpolate rather than take the nearest.
-    const double u = static_cast<double>(s.t - a->t) / static_cast<double>(b->t - a->t);
-    field = (1.0 - u) * a->field + u * b->field;
-  } else if (a || b) {
-    field = (a && (!b || s.t - a->t <= b->t - s.t)) ? a->field : b->field;
-  } else {
-    return;
-  }
-  if (!(field.norm() > 0)) return;
-  if (!mag_referenced) set_mag_reference(field, s.T_W_B());  // no sample during the still start
-  s.mag_B = field;
 }
 
 void SlidingWindowEstimator::Impl::remove_failed_tracks() {
@@ -835,13 +518,14 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
   if (cfg.marginalization) {
     // Blocks leaving: the oldest pose and speed-bias, the inverse depths anchored there.
     std::set<const double*> leaving{oldest.pose, oldest.speed_bias};
+    if (oldest.has_gps_bias) leaving.insert(oldest.gps_bias);
     for (auto id : tracks.anchored_at(oldest.id)) leaving.insert(&tracks.tracks().at(id).inverse_depth);
     std::vector<double*> fixed;
     const std::vector<Residual> residuals = build_residuals(nullptr, &fixed);
     Marginalizer marg;
     for (auto& s : window) marg.set_manifold(s->pose, BlockKind::kPose);
     marg.set_manifold(extrinsic, BlockKind::kPose);
-    marg.set_constant(extrinsic);
+    if (!cfg.estimate_extrinsic) marg.set_constant(extrinsic);
     for (double* lambda : fixed) {
       marg.set_constant(lambda);
       leaving.erase(lambda);
@@ -923,6 +607,8 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   WindowState& newest = *window.back();
   add_observations(newest.id, frame);
   if (cfg.use_gps) attach_gps(newest);
+  if (newest.gps && enu_registered && cfg.gps_mode == GpsMode::kJoint && cfg.gps_multipath_fraction > 0)
+    start_gps_bias(newest);
   if (cfg.use_mag)
     for (auto& w : window) attach_mag(*w);
   // A frame carrying a fix stays in the window, so that its GPS factor does.
@@ -1019,6 +705,7 @@ std::size_t SlidingWindowEstimator::optimize() {
 }
 
 const EstimatorConfig& SlidingWindowEstimator::config() const { return impl_->cfg; }
+SE3 SlidingWindowEstimator::camera_extrinsic() const { return pose_from_block(impl_->extrinsic); }
 const EstimatorStatistics& SlidingWindowEstimator::statistics() const { return impl_->stats; }
 std::size_t SlidingWindowEstimator::window_keyframes() const {
   std::size_t n = 0;

@@ -38,6 +38,9 @@ void read_camera(const Config& c, SimulationConfig& s, const SensorPreset& prese
   cam.depth_baseline_m = c.get_double("sensor.depth.baseline", cam.depth_baseline_m, {1e-3, 1});
   cam.depth_disparity_sigma_px = c.get_double("sensor.depth.disparity_sigma", cam.depth_disparity_sigma_px, {0, 5});
   cam.T_B_C = s.mount.T_B_C();
+  // A real rig's clocks disagree by milliseconds; 0.1 s bounds what an estimator can still find.
+  s.camera_time_offset_s = c.get_double("sensor.camera.time_offset", 0.0, {-0.1, 0.1});
+  cam.time_offset_s = c.get_double("sensor.camera.time_offset_calibrated", s.camera_time_offset_s, {-0.1, 0.1});
   s.camera = cam;
 
   RgbdNoiseConfig& n = s.rgbd_noise;

@@ -43,6 +43,11 @@ std::optional<RayCaster> moving_caster(const Scenario& scenario, double t_s, con
   return RayCaster(moving_world(nearby, t_s));
 }
 
+// Camera frames carry the camera clock: taken at trajectory time t (IMU clock), stamped t - offset.
+Timestamp camera_stamp(const SimulationConfig& c, Timestamp t) {
+  return kSimulationEpoch + t - seconds_to_ns(c.camera_time_offset_s);
+}
+
 ImageF32 quantize_depth(const ImageF32& depth, double unit_m) {
   // Through the same integer units as the cache, so cached and fresh renderings agree exactly.
   const ImageU16 raw = io::depth_to_png_units(depth, unit_m, "<rendered depth>");
@@ -141,7 +146,7 @@ struct FrameStage {
     const LabelPrediction labels = confusion.apply(clean.labels, config.seed, i);
 
     RgbdFrame f;
-    f.t = kSimulationEpoch + times[i];
+    f.t = camera_stamp(config, times[i]);
     f.index = i;
     f.camera = config.camera.name;
     f.intensity_path = (out / image_name("rgb", f.camera, f.t)).string();
@@ -172,7 +177,7 @@ std::vector<FeatureFrame> simulate_features(const Scenario& scenario, const Simu
     const double t_s = ns_to_seconds(times[i]);
     const SE3 T_W_C = trajectory.state(t_s).T_W_B * config.camera.T_B_C;
     const auto moving = moving_caster(scenario, t_s, T_W_C.t);
-    FeatureFrame f = observer.observe(kSimulationEpoch + times[i], T_W_C, rng, moving ? &*moving : nullptr);
+    FeatureFrame f = observer.observe(camera_stamp(config, times[i]), T_W_C, rng, moving ? &*moving : nullptr);
     frames.push_back(std::move(f));  // also when empty: the camera saw nothing it could track
     if (options.on_frame) options.on_frame(i + 1, times.size());
   }

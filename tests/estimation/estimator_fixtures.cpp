@@ -34,6 +34,7 @@ EstimatorRun run_estimator(const io::Recording& rec, const std::vector<std::stri
   if (flush)
     for (auto& s : estimator.finish()) r.estimates.push_back(s);
   r.stats = estimator.statistics();
+  r.camera_extrinsic = estimator.camera_extrinsic();
   return r;
 }
 

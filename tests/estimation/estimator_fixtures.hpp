@@ -16,6 +16,7 @@ io::Recording simulate_recording(const std::string& scratch_name, const std::vec
 struct EstimatorRun {
   std::vector<StateEstimate> estimates;
   EstimatorStatistics stats;
+  SE3 camera_extrinsic;  ///< T_B_C at the end (the online estimate when estimated)
 };
 
 /// Every event of `rec` through a SlidingWindowEstimator configured by `overrides` (the

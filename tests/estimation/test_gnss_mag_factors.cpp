@@ -1,4 +1,5 @@
-// GPS position factor and magnetometer yaw factor.
+// GPS position factor (with and without a multipath bias), the Gauss-Markov link of the bias,
+// and the magnetometer yaw factor.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,6 +11,7 @@
 
 #include "factor_check.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/estimation/factors/gauss_markov_factor.hpp"
 #include "navaid/estimation/factors/gps_position_factor.hpp"
 #include "navaid/estimation/factors/magnetometer_yaw_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
@@ -54,6 +56,68 @@ TEST(GpsPositionFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
     const GpsPositionFactor f(random_vector(rng, 50.0), cov, random_vector(rng, 0.5));
     EXPECT_TRUE(jacobians_match(f, {pose, align}, {&pm, nullptr})) << "trial " << trial;
   }
+}
+
+TEST(GpsPositionBiasFactor, IsThePlainFactorShiftedByTheBias) {
+  std::mt19937_64 rng(5);
+  double pose[kPoseSize], align[4] = {0.3, 1.0, -2.0, 0.5};
+  pose_to_block(random_pose(rng, 10.0), pose);
+  const Vec3 z = random_vector(rng, 20.0), lever(0.1, 0.0, 0.3);
+  const Mat3 cov = Vec3(4.0, 9.0, 16.0).asDiagonal();
+  const GpsPositionFactor plain(z, cov, lever);
+  const GpsPositionBiasFactor biased(z, cov, lever);
+  double zero[3] = {0, 0, 0}, bias[3] = {1.0, -3.0, 2.0};
+  Vec3 r0, r1, r2;
+  const double* p0[] = {pose, align};
+  const double* p1[] = {pose, align, zero};
+  const double* p2[] = {pose, align, bias};
+  ASSERT_TRUE(plain.Evaluate(p0, r0.data(), nullptr));
+  ASSERT_TRUE(biased.Evaluate(p1, r1.data(), nullptr));
+  ASSERT_TRUE(biased.Evaluate(p2, r2.data(), nullptr));
+  EXPECT_LT((r1 - r0).norm(), 1e-12);
+  // A bias of b moves the predicted fix by b: r changes by L^-1 b = (0.5, -1, 0.5) here.
+  EXPECT_LT((r2 - r0 - Vec3(0.5, -1.0, 0.5)).norm(), 1e-12);
+}
+
+TEST(GpsPositionBiasFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
+  std::mt19937_64 rng(37);
+  const PoseManifold pm;
+  for (int trial = 0; trial < 10; ++trial) {
+    double pose[kPoseSize];
+    pose_to_block(random_pose(rng, 20.0), pose);
+    const Vec3 t = random_vector(rng, 50.0), b = random_vector(rng, 3.0);
+    double align[4] = {0.1 * trial - 0.4, t.x(), t.y(), t.z()}, bias[3] = {b.x(), b.y(), b.z()};
+    Mat3 A = Mat3::Random();
+    const GpsPositionBiasFactor f(random_vector(rng, 50.0), A * A.transpose() + Mat3::Identity(),
+                                  random_vector(rng, 0.5));
+    EXPECT_TRUE(jacobians_match(f, {pose, align, bias}, {&pm, nullptr, nullptr})) << "trial " << trial;
+  }
+}
+
+TEST(GaussMarkovFactor, WhitensTheProcessStep) {
+  // tau = dt / ln 2: phi = 0.5, step variance (1 - 0.25) Sigma.
+  const Mat3 sigma = Vec3(4.0, 4.0, 16.0).asDiagonal();
+  const GaussMarkovFactor f(1.0, 1.0 / std::log(2.0), sigma);
+  EXPECT_NEAR(f.phi(), 0.5, 1e-15);
+  double previous[3] = {2.0, -2.0, 4.0}, current[3] = {1.0, -1.0, 2.0 + std::sqrt(12.0)};
+  const double* p[] = {previous, current};
+  Vec3 r;
+  ASSERT_TRUE(f.Evaluate(p, r.data(), nullptr));
+  // current - phi previous = (0, 0, sqrt 12), whitened by sqrt(0.75 * 16) = sqrt 12.
+  EXPECT_LT((r - Vec3(0.0, 0.0, 1.0)).norm(), 1e-12);
+  std::mt19937_64 rng(3);
+  Mat3 A = Mat3::Random();
+  const GaussMarkovFactor g(0.7, 30.0, A * A.transpose() + Mat3::Identity());
+  const Vec3 a = random_vector(rng, 2.0), c = random_vector(rng, 2.0);
+  double x0[3] = {a.x(), a.y(), a.z()}, x1[3] = {c.x(), c.y(), c.z()};
+  EXPECT_TRUE(jacobians_match(g, {x0, x1}, {nullptr, nullptr}));
+}
+
+TEST(GaussMarkovFactor, RejectsBadArguments) {
+  EXPECT_THROW(GaussMarkovFactor(-1.0, 30.0, Mat3::Identity()), Error);
+  EXPECT_THROW(GaussMarkovFactor(1.0, 0.0, Mat3::Identity()), Error);
+  EXPECT_THROW(GaussMarkovFactor(0.0, 30.0, Mat3::Identity()), Error);  // no noise in a zero step
+  EXPECT_THROW(GaussMarkovFactor(1.0, 30.0, -Mat3::Identity()), Error);
 }
 
 TEST(GpsPositionFactor, RejectsBadCovariance) {

@@ -29,7 +29,9 @@ AnchoredPoint transfer_anchored_point(const double* pose_anchor, const double* p
   const Mat3 R_ct_ba = R_ct_w * R_wa;
   out.d_extrinsic.leftCols<3>() = R_ct_ba - R_bc.transpose();
   out.d_extrinsic.rightCols<3>() = hat(out.P_ct) - R_ct_ba * R_bc * hat(P_ca);
-  out.d_lambda = R_ct_ba * R_bc * (-m_anchor / (inverse_depth * inverse_depth));
+  const Mat3 R_ct_ca = R_ct_ba * R_bc;
+  out.d_lambda = R_ct_ca * (-m_anchor / (inverse_depth * inverse_depth));
+  out.d_m_anchor = R_ct_ca.leftCols<2>() / inverse_depth;
   return out;
 }
 

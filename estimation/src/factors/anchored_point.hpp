@@ -6,7 +6,8 @@
 //   P_w  = R_wa (R_bc P_ca + t_bc) + p_wa     (anchor body -> world)
 //   P_ct = R_bc^T (R_wt^T (P_w - p_wt) - t_bc)  (world -> target body -> target camera)
 //
-// Jacobians are w.r.t. [dp, dtheta] with right rotation perturbations (R Exp(dtheta)) and lambda.
+// Jacobians are w.r.t. [dp, dtheta] with right rotation perturbations (R Exp(dtheta)), lambda and
+// the anchor measurement (x_a, y_a) (the time-offset factors move the measurements).
 #include "navaid/core/geometry.hpp"
 
 namespace navaid::estimation::detail {
@@ -17,6 +18,7 @@ struct AnchoredPoint {
   Eigen::Matrix<double, 3, 6> d_target;       ///< d P_ct / d [dp_t, dtheta_t]
   Eigen::Matrix<double, 3, 6> d_extrinsic;    ///< d P_ct / d [dt_bc, dtheta_bc]
   Vec3 d_lambda;                              ///< d P_ct / d lambda
+  Eigen::Matrix<double, 3, 2> d_m_anchor;     ///< d P_ct / d (x_a, y_a)
 };
 
 /// Parameter blocks: 7-double poses (see pose_parametrization.hpp) and the inverse depth.

@@ -11,11 +11,16 @@ namespace navaid::estimation {
 
 namespace {
 constexpr double kMinDepth = 1e-6;  // [m] in front of the camera
+
+// [X, Y, 1/Z] of the measured point in the target camera.
+Vec3 measured_point(const Eigen::Vector2d& m_target, double depth_m) {
+  return Vec3(m_target.x() * depth_m, m_target.y() * depth_m, 1.0 / depth_m);
 }
+}  // namespace
 
 Depth3dFactor::Depth3dFactor(const Eigen::Vector2d& m_anchor, const Eigen::Vector2d& m_target, double depth_j_m,
                              double focal_px, double sigma_lambda, double sigma_px)
-    : m_anchor_(m_anchor.x(), m_anchor.y(), 1.0) {
+    : m_anchor_(m_anchor), m_target_(m_target), depth_m_(depth_j_m) {
   if (!(depth_j_m > 0.0) || !std::isfinite(depth_j_m)) {
     throw Error("Depth3dFactor: measured depth must be finite and > 0, got " + std::to_string(depth_j_m));
   }
@@ -25,24 +30,39 @@ Depth3dFactor::Depth3dFactor(const Eigen::Vector2d& m_anchor, const Eigen::Vecto
   require(focal_px, "focal_px");
   require(sigma_lambda, "sigma_lambda");
   require(sigma_px, "sigma_px");
-  measurement_ << m_target.x() * depth_j_m, m_target.y() * depth_j_m, 1.0 / depth_j_m;
+  measurement_ = measured_point(m_target, depth_j_m);
   const double sigma_xy = depth_j_m * sigma_px / focal_px;
   sqrt_information_ << 1.0 / sigma_xy, 1.0 / sigma_xy, 1.0 / sigma_lambda;
 }
 
 bool Depth3dFactor::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  const bool want = jacobians != nullptr;
-  const detail::AnchoredPoint pt = detail::transfer_anchored_point(parameters[0], parameters[1], parameters[2],
-                                                                   parameters[3][0], m_anchor_, want);
+  return evaluate_at(parameters, m_anchor_, m_target_, depth_m_, residuals, jacobians, nullptr, nullptr, nullptr);
+}
+
+bool Depth3dFactor::evaluate_at(double const* const* parameters, const Eigen::Vector2d& m_anchor,
+                                const Eigen::Vector2d& m_target, double depth_j_m, double* residuals,
+                                double** jacobians, Eigen::Matrix<double, 3, 2>* d_m_anchor,
+                                Eigen::Matrix<double, 3, 2>* d_m_target, Eigen::Vector3d* d_depth) const {
+  const bool want = jacobians != nullptr || d_m_anchor != nullptr;
+  const detail::AnchoredPoint pt = detail::transfer_anchored_point(
+      parameters[0], parameters[1], parameters[2], parameters[3][0], Vec3(m_anchor.x(), m_anchor.y(), 1.0), want);
   const Vec3& P = pt.P_ct;
   if (!(P.z() > kMinDepth)) return false;
   const Vec3 predicted(P.x(), P.y(), 1.0 / P.z());
-  Eigen::Map<Vec3>{residuals} = sqrt_information_.cwiseProduct(measurement_ - predicted);
+  Eigen::Map<Vec3>{residuals} = sqrt_information_.cwiseProduct(measured_point(m_target, depth_j_m) - predicted);
+  if (d_m_target) {  // X = x_j Z, Y = y_j Z
+    d_m_target->setZero();
+    (*d_m_target)(0, 0) = sqrt_information_.x() * depth_j_m;
+    (*d_m_target)(1, 1) = sqrt_information_.y() * depth_j_m;
+  }
+  if (d_depth) *d_depth = sqrt_information_.cwiseProduct(Vec3(m_target.x(), m_target.y(), -1.0 / (depth_j_m * depth_j_m)));
   if (!want) return true;
 
   // d r / d P = -S d[X, Y, 1/Z] / dP
   const Mat3 d_point = Vec3(-sqrt_information_.x(), -sqrt_information_.y(),
                             sqrt_information_.z() / (P.z() * P.z())).asDiagonal();
+  if (d_m_anchor) *d_m_anchor = d_point * pt.d_m_anchor;
+  if (!jacobians) return true;
   if (jacobians[0]) write_pose_jacobian<3>(d_point * pt.d_anchor, parameters[0], jacobians[0]);
   if (jacobians[1]) write_pose_jacobian<3>(d_point * pt.d_target, parameters[1], jacobians[1]);
   if (jacobians[2]) write_pose_jacobian<3>(d_point * pt.d_extrinsic, parameters[2], jacobians[2]);

@@ -1,23 +1,16 @@
 #include "navaid/estimation/factors/gps_position_factor.hpp"
 
-#include <Eigen/Cholesky>
-
 #include "navaid/core/errors.hpp"
+#include "navaid/estimation/factors/gauss_markov_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 
 namespace navaid::estimation {
 
 GpsPositionFactor::GpsPositionFactor(const Vec3& position_enu, const Mat3& covariance_enu, const Vec3& lever_arm_B)
     : position_enu_(position_enu), lever_arm_B_(lever_arm_B) {
-  if (!position_enu.allFinite() || !lever_arm_B.allFinite() || !covariance_enu.allFinite()) {
-    throw Error("GpsPositionFactor: non-finite position, lever arm or covariance");
-  }
-  if (!covariance_enu.isApprox(covariance_enu.transpose(), 1e-9)) {
-    throw Error("GpsPositionFactor: the fix covariance is not symmetric");
-  }
-  const Eigen::LLT<Mat3> llt(covariance_enu);
-  if (llt.info() != Eigen::Success) throw Error("GpsPositionFactor: the fix covariance is not positive definite");
-  sqrt_information_ = llt.matrixL().solve(Mat3::Identity());
+  if (!position_enu.allFinite() || !lever_arm_B.allFinite())
+    throw Error("GpsPositionFactor: non-finite position or lever arm");
+  sqrt_information_ = sqrt_information_of(covariance_enu, "GpsPositionFactor: the fix");
 }
 
 bool GpsPositionFactor::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
@@ -42,6 +35,20 @@ bool GpsPositionFactor::Evaluate(double const* const* parameters, double* residu
     J.rightCols<3>() = Mat3::Identity();
     Eigen::Map<Eigen::Matrix<double, 3, 4, Eigen::RowMajor>>{jacobians[1]} = sqrt_information_ * J;
   }
+  return true;
+}
+
+GpsPositionBiasFactor::GpsPositionBiasFactor(const Vec3& position_enu, const Mat3& covariance_enu,
+                                             const Vec3& lever_arm_B)
+    : position_(position_enu, covariance_enu, lever_arm_B) {}
+
+bool GpsPositionBiasFactor::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
+  double* position_jacobians[2] = {jacobians ? jacobians[0] : nullptr, jacobians ? jacobians[1] : nullptr};
+  if (!position_.Evaluate(parameters, residuals, jacobians ? position_jacobians : nullptr)) return false;
+  // The bias adds to the predicted antenna position.
+  const Mat3& L_inv = position_.sqrt_information();
+  Eigen::Map<Vec3>{residuals} += L_inv * Eigen::Map<const Vec3>(parameters[2]);
+  if (jacobians && jacobians[2]) Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>{jacobians[2]} = L_inv;
   return true;
 }
 

@@ -78,6 +78,9 @@ struct EstimatorConfig {
   /// Correlation time of the fix errors (multipath) for the registration's covariance [s].
   double gps_correlation_time_s = 30.0;
   GpsMode gps_mode = GpsMode::kJoint;
+  /// Joint: share of each fix's reported covariance that is multipath, a bias per fix estimated as
+  /// a Gauss-Markov process (time constant gps_correlation_time_s); 0: independent fixes.
+  double gps_multipath_fraction = 0.0;
   /// Decoupled: register over the newest this many fixes (0: every fix so far).
   int gps_registration_fixes = 0;
 
@@ -93,6 +96,14 @@ struct EstimatorConfig {
 
   /// IMU-only for longer than this: mode "lost".
   double lost_after_s = 2.0;
+
+  // Camera-IMU calibration estimated online (VINS-Mono style), starting from the rig calibration
+  // with a Gaussian prior of these sigmas around it.
+  bool estimate_extrinsic = false;
+  double extrinsic_sigma_rotation_rad = 0.05;
+  double extrinsic_sigma_translation_m = 0.05;
+  bool estimate_time_offset = false;
+  double time_offset_sigma_s = 0.02;
 };
 
 /// Reads `estimator.*` (defaults above for absent keys); ConfigError names the key and its range.

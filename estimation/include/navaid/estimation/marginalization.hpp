@@ -107,6 +107,12 @@ struct MarginalizationPrior {
   void remap(const std::unordered_map<const double*, double*>& old_to_new);
 };
 
+/// A Gaussian prior on one block around its current value, in the prior's square-root form
+/// (J = sqrt_information, r = 0): r(x) = sqrt_information (x [-] x0). sqrt_information is
+/// tangent x tangent (e.g. L^-1 of the covariance, or diag(1/sigma)); throws Error on a size mismatch.
+MarginalizationPrior gaussian_block_prior(double* block, BlockKind kind, int ambient_size,
+                                          const Eigen::MatrixXd& sqrt_information);
+
 /// x [-] x0 in the tangent of the block's manifold (see the top of this file); tangent_size() doubles.
 void block_minus(BlockKind kind, int ambient_size, const double* x, const double* x0, double* delta);
 

@@ -89,6 +89,9 @@ class SlidingWindowEstimator {
   std::size_t optimize();
 
   const EstimatorConfig& config() const;
+  /// The camera-IMU extrinsic T_B_C in use: the calibration's, or the online estimate
+  /// (estimator.extrinsic.estimate).
+  SE3 camera_extrinsic() const;
   const EstimatorStatistics& statistics() const;
   /// Keyframes currently in the window.
   std::size_t window_keyframes() const;

@@ -39,7 +39,10 @@ struct SimulationConfig {
   SimulationMode mode = SimulationMode::kImages;
   WalkerConfig walker;
 
-  CameraCalibration camera;        ///< with T_B_C from the mount
+  CameraCalibration camera;        ///< with T_B_C from the mount; time_offset_s as calibration.yaml says
+  /// The true camera-IMU offset [s] (t_imu = t_cam + offset): a frame taken at IMU / ground-truth
+  /// time t is stamped t - offset (rounded to the nanosecond).
+  double camera_time_offset_s = 0;
   ImuCalibration imu;
   ImuModelOptions imu_options;     ///< seed filled in by the simulator
   RgbdNoiseConfig rgbd_noise;

@@ -6,6 +6,8 @@
 // Time line: the walker stands still for still_time_s (trajectory time -still_time_s .. 0), then
 // walks; the recording ends at the end of the walk or after duration_s. Every sensor samples the
 // exact trajectory at its own integer-nanosecond grid (time_grid.hpp) from kSimulationEpoch.
+// The camera's grid is in the IMU clock too, but its frames are stamped in the camera clock:
+// a frame taken at t carries t - config.camera_time_offset_s (t_imu = t_cam + offset).
 // W = ENU at the scenario's geodetic origin (T_ENU_W = identity).
 //
 // Output folder: the navaid recording (imu, frames or features, gps, mag, groundtruth at the IMU

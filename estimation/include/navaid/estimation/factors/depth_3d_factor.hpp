@@ -29,12 +29,21 @@ class Depth3dFactor final : public ceres::SizedCostFunction<3, 7, 7, 7, 1> {
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
+  /// The same residual for other measurements m_anchor, m_target, depth_j_m (the weights stay
+  /// those of the constructor's depth), with its Jacobians w.r.t. the measurements as well when
+  /// d_m_anchor / d_m_target / d_depth are not null (Depth3dTdFactor moves the measurements with
+  /// the time offset). Evaluate() is evaluate_at(the constructor's measurements).
+  bool evaluate_at(double const* const* parameters, const Eigen::Vector2d& m_anchor, const Eigen::Vector2d& m_target,
+                   double depth_j_m, double* residuals, double** jacobians, Eigen::Matrix<double, 3, 2>* d_m_anchor,
+                   Eigen::Matrix<double, 3, 2>* d_m_target, Eigen::Vector3d* d_depth) const;
+
   /// The measured point [X, Y, 1/Z] and the diagonal of Sigma^-1/2.
   const Eigen::Vector3d& measurement() const { return measurement_; }
   const Eigen::Vector3d& sqrt_information() const { return sqrt_information_; }
 
  private:
-  Eigen::Vector3d m_anchor_;
+  Eigen::Vector2d m_anchor_, m_target_;
+  double depth_m_;
   Eigen::Vector3d measurement_;
   Eigen::Vector3d sqrt_information_;
 };

@@ -25,10 +25,17 @@ class ReprojectionFactor final : public ceres::SizedCostFunction<2, 7, 7, 7, 1> 
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
+  /// The same residual for other measurements (same weight), with its Jacobians w.r.t. the two
+  /// measurements as well when d_m_anchor / d_m_target are not null (ReprojectionTdFactor moves
+  /// the measurements with the time offset). Evaluate() is evaluate_at(the constructor's m).
+  bool evaluate_at(double const* const* parameters, const Eigen::Vector2d& m_anchor, const Eigen::Vector2d& m_target,
+                   double* residuals, double** jacobians, Eigen::Matrix2d* d_m_anchor,
+                   Eigen::Matrix2d* d_m_target) const;
+
   double sqrt_information() const { return sqrt_information_; }  ///< f / sigma_px
 
  private:
-  Eigen::Vector3d m_anchor_;
+  Eigen::Vector2d m_anchor_;
   Eigen::Vector2d m_target_;
   double sqrt_information_;
 };

@@ -1,0 +1,132 @@
+// The window's absolute sensors: GPS fixes (joint: registration, then factors with a multipath
+// bias per fix; decoupled: re-registration at every fix) and the magnetometer's heading reference.
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "navaid/core/geodesy.hpp"
+#include "navaid/estimation/factors/gauss_markov_factor.hpp"
+#include "impl.hpp"
+
+namespace navaid::estimation {
+
+namespace {
+
+/// Covariance of [yaw, t_x, t_y, t_z]; a registration without heights leaves t_z loosely known.
+Mat4 alignment_covariance(const GpsRegistration& r) {
+  Mat4 P = Mat4::Identity() * kUnregisteredHeightSigma * kUnregisteredHeightSigma;
+  const int n = static_cast<int>(r.covariance.rows());
+  P.topLeftCorner(n, n) = r.covariance;
+  return P;
+}
+
+}  // namespace
+
+Vec3 SlidingWindowEstimator::Impl::fix_enu(const GpsFix& fix) const {
+  // The registration's eq. 6 conversion, so that factors and registration agree.
+  return geodesic_enu({fix}, *origin).front();
+}
+
+void SlidingWindowEstimator::Impl::attach_gps(WindowState& s) {
+  const Timestamp tolerance = static_cast<Timestamp>(std::llround(cfg.gps_max_time_offset_s * 1e9));
+  while (!pending_fixes.empty() && pending_fixes.front().t < s.t - tolerance) pending_fixes.pop_front();  // missed
+  if (!pending_fixes.empty() && pending_fixes.front().t <= s.t + tolerance) {
+    s.gps = pending_fixes.front();
+    pending_fixes.pop_front();
+  }
+}
+
+void SlidingWindowEstimator::Impl::start_gps_bias(WindowState& s) {
+  s.has_gps_bias = true;
+  s.gps_multipath_covariance = cfg.gps_multipath_fraction * s.gps->covariance_enu;
+  const WindowState* previous = last_gps_bias_state ? state(*last_gps_bias_state) : nullptr;
+  if (previous) {
+    s.gps_bias_previous = previous->id;
+    const double phi = std::exp(-ns_to_seconds(s.t - previous->t) / cfg.gps_correlation_time_s);
+    for (int i = 0; i < 3; ++i) s.gps_bias[i] = phi * previous->gps_bias[i];  // the process's prediction
+  } else {
+    s.gps_bias_prior = std::make_shared<MarginalizationPrior>(gaussian_block_prior(
+        s.gps_bias, BlockKind::kEuclidean, 3, sqrt_information_of(s.gps_multipath_covariance, "GPS multipath")));
+  }
+  last_gps_bias_state = s.id;
+}
+
+void SlidingWindowEstimator::Impl::register_gps(const WindowState& s) {
+  if (enu_registered || !s.gps) return;
+  const SE3 T = s.T_W_B();
+  registration_pairs.push_back({*s.gps, T * gps_lever_arm_B});
+  const GpsRegistration r = registration(registration_pairs);
+  if (!r.registered()) return;
+  for (int i = 0; i < kEnuAlignmentSize; ++i) enu_alignment[i] = r.alignment(i);
+  enu_registered = true;
+  // The fixes used here are not factors in the window: their information enters as a Gaussian
+  // prior on T_ENU_W (in the marginalization prior's square-root form, J = L^-1, r = 0).
+  const Mat4 P = alignment_covariance(r);
+  const Eigen::LLT<Mat4> llt(0.5 * (P + P.transpose()));
+  if (llt.info() != Eigen::Success) return;
+  enu_prior = std::make_shared<MarginalizationPrior>(gaussian_block_prior(
+      enu_alignment, BlockKind::kEuclidean, kEnuAlignmentSize, llt.matrixL().solve(Mat4::Identity())));
+  ++stats.gps_registrations;
+}
+
+GpsRegistration SlidingWindowEstimator::Impl::registration(const std::vector<GpsRegistrationPair>& pairs) const {
+  GpsRegistrationOptions options;
+  options.error_correlation_time_s = cfg.gps_correlation_time_s;  // multipath: not independent fixes
+  return register_gps_to_world(pairs, *origin, options);
+}
+
+void SlidingWindowEstimator::Impl::reregister_gps(const WindowState& s) {
+  if (!s.gps) return;
+  registration_pairs.push_back({*s.gps, s.T_W_B() * gps_lever_arm_B});
+  const std::size_t keep = static_cast<std::size_t>(cfg.gps_registration_fixes);
+  if (keep > 0 && registration_pairs.size() > keep)
+    registration_pairs.erase(registration_pairs.begin(),
+                             registration_pairs.end() - static_cast<std::ptrdiff_t>(keep));
+  const GpsRegistration r = registration(registration_pairs);
+  // A failed re-registration (too few or too uncertain fixes) keeps the last good alignment.
+  if (!r.registered()) return;
+  decoupled_T_ENU_W = r.T_ENU_W();
+  decoupled_covariance = alignment_covariance(r);
+  ++stats.gps_registrations;
+}
+
+void SlidingWindowEstimator::Impl::set_mag_reference(const Vec3& field_B, const SE3& T_W_B) {
+  const Vec3 h = T_W_B.q * field_B;
+  const Vec3& ref = cfg.mag_reference_field_enu;
+  // Rz(psi) turns the field's heading in W into the reference heading in ENU.
+  mag_alignment[0] = std::remainder(std::atan2(ref.y(), ref.x()) - std::atan2(h.y(), h.x()), 2.0 * M_PI);
+  mag_referenced = true;
+  const Mat4 sqrt_info = Eigen::Vector4d(1.0 / kMagHeadingPriorSigma, 1.0 / kMagUnusedPriorSigma,
+                                         1.0 / kMagUnusedPriorSigma, 1.0 / kMagUnusedPriorSigma)
+                             .asDiagonal();
+  mag_prior = std::make_shared<MarginalizationPrior>(
+      gaussian_block_prior(mag_alignment, BlockKind::kEuclidean, kEnuAlignmentSize, sqrt_info));
+}
+
+void SlidingWindowEstimator::Impl::attach_mag(WindowState& s) {
+  if (s.mag_decided) return;
+  const Timestamp tolerance = static_cast<Timestamp>(std::llround(cfg.mag_max_time_offset_s * 1e9));
+  // Decide once every sample that could be used has arrived (deterministic, whatever the rates).
+  if (mag.empty() || mag.back().t <= s.t + tolerance) return;
+  s.mag_decided = true;
+  const auto after = std::lower_bound(mag.begin(), mag.end(), s.t,
+                                      [](const MagSample& m, Timestamp t) { return m.t < t; });
+  const MagSample* a = after != mag.begin() && s.t - std::prev(after)->t <= tolerance ? &*std::prev(after) : nullptr;
+  const MagSample* b = after != mag.end() && after->t - s.t <= tolerance ? &*after : nullptr;
+  Vec3 field;
+  if (a && b && b->t > a->t) {
+    // The field in B follows the head's rotation: interpolate rather than take the nearest.
+    const double u = static_cast<double>(s.t - a->t) / static_cast<double>(b->t - a->t);
+    field = (1.0 - u) * a->field + u * b->field;
+  } else if (a || b) {
+    field = (a && (!b || s.t - a->t <= b->t - s.t)) ? a->field : b->field;
+  } else {
+    return;
+  }
+  if (!(field.norm() > 0)) return;
+  if (!mag_referenced) set_mag_reference(field, s.T_W_B());  // no sample during the still start
+  s.mag_B = field;
+}
+
+}  // namespace navaid::estimation

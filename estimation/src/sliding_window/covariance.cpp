@@ -1,0 +1,114 @@
+// The newest state's marginal covariance from the window's information (docs/estimator.md,
+// "Covariance").
+#include <set>
+
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCore>
+
+#include "impl.hpp"
+
+namespace navaid::estimation {
+
+std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(ceres::Problem& problem) {
+  const WindowState& s = *window.back();
+  const bool with_enu = problem.HasParameterBlock(enu_alignment);
+  NewestCovariance out;
+  Eigen::Matrix<double, 15, 15> C;  // Ceres tangent [dp, d, v, b_g, b_a]
+  if (cfg.covariance_method == CovarianceMethod::kCeres) {
+    if (problem.IsParameterBlockConstant(s.speed_bias)) return std::nullopt;
+    ceres::Covariance::Options co;
+    co.algorithm_type = ceres::SPARSE_QR;
+    co.num_threads = 1;
+    ceres::Covariance covariance(co);
+    std::vector<std::pair<const double*, const double*>> pairs = {
+        {s.pose, s.pose}, {s.pose, s.speed_bias}, {s.speed_bias, s.speed_bias}};
+    if (with_enu) pairs.emplace_back(enu_alignment, enu_alignment);
+    if (!covariance.Compute(pairs, &problem)) return std::nullopt;
+    Eigen::Matrix<double, 15, 15, Eigen::RowMajor> Cr;
+    if (!covariance.GetCovarianceMatrixInTangentSpace({s.pose, s.speed_bias}, Cr.data())) return std::nullopt;
+    C = Cr;
+    if (with_enu) {
+      Eigen::Matrix<double, 4, 4, Eigen::RowMajor> A;
+      if (!covariance.GetCovarianceBlock(enu_alignment, enu_alignment, A.data())) return std::nullopt;
+      out.enu_alignment = A;
+    }
+  } else {
+    // Same quantity from the Gauss-Newton information J^T J (robust losses applied, as
+    // ceres::Covariance does): Schur-complement the inverse depths (a diagonal block), then the
+    // newest state's block of the inverse. Columns: T_ENU_W when present, the magnetometer's psi
+    // when present, the online extrinsic, the states oldest first (the newest last), then every
+    // free inverse depth; blocks left out of the list are held constant by Evaluate.
+    ceres::Problem::EvaluateOptions eo;
+    int state_cols = 0;
+    // Blocks estimated with the states (T_ENU_W first: its columns are read back below). psi and
+    // the online calibration correlate with every state: columns of their own, not held constant.
+    std::vector<std::pair<double*, int>> extra;
+    if (with_enu) extra.emplace_back(enu_alignment, kEnuAlignmentSize);
+    if (problem.HasParameterBlock(mag_alignment)) extra.emplace_back(mag_alignment, kEnuAlignmentSize);
+    if (!problem.IsParameterBlockConstant(extrinsic)) extra.emplace_back(extrinsic, kPoseTangentSize);
+    for (const auto& w : window)
+      if (problem.HasParameterBlock(w->gps_bias)) extra.emplace_back(w->gps_bias, 3);
+    for (const auto& [block, size] : extra) {
+      eo.parameter_blocks.push_back(block);
+      state_cols += size;
+    }
+    for (const auto& w : window) {
+      eo.parameter_blocks.push_back(w->pose);
+      state_cols += kPoseTangentSize;
+      if (!problem.IsParameterBlockConstant(w->speed_bias)) {
+        eo.parameter_blocks.push_back(w->speed_bias);
+        state_cols += kSpeedBiasSize;
+      }
+    }
+    std::vector<double*> all;
+    problem.GetParameterBlocks(&all);
+    std::set<const double*> states{enu_alignment, mag_alignment, extrinsic};
+    for (const auto& w : window) states.insert(w->pose), states.insert(w->speed_bias), states.insert(w->gps_bias);
+    for (double* b : all)
+      if (!states.count(b) && problem.ParameterBlockSize(b) == 1 && !problem.IsParameterBlockConstant(b))
+        eo.parameter_blocks.push_back(b);
+    ceres::CRSMatrix crs;
+    if (!problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
+    const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> J(
+        crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
+        crs.values.data());
+    const Eigen::MatrixXd H = Eigen::MatrixXd(Eigen::SparseMatrix<double>(J.transpose() * J));
+    const int nl = crs.num_cols - state_cols;
+    Eigen::MatrixXd S = H.topLeftCorner(state_cols, state_cols);
+    if (nl > 0) {
+      Eigen::VectorXd inv_l(nl);
+      for (int k = 0; k < nl; ++k) {
+        const double h = H(state_cols + k, state_cols + k);
+        inv_l(k) = h > 1e-12 ? 1.0 / h : 0.0;  // an unobserved depth carries no information
+      }
+      const Eigen::MatrixXd H_sl = H.topRightCorner(state_cols, nl);
+      S.noalias() -= H_sl * inv_l.asDiagonal() * H_sl.transpose();
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+    if (llt.info() != Eigen::Success) return std::nullopt;
+    // The newest state's columns are the last ones: its pose, and its speed-bias unless constant.
+    const int newest = problem.IsParameterBlockConstant(s.speed_bias) ? kPoseTangentSize : 15;
+    const int enu = with_enu ? kEnuAlignmentSize : 0;
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(state_cols, newest + enu);
+    E.bottomLeftCorner(newest, newest).setIdentity();
+    if (enu) E.topRightCorner(enu, enu).setIdentity();
+    const Eigen::MatrixXd X = llt.solve(E);
+    C.setZero();
+    C.topLeftCorner(newest, newest) = X.bottomLeftCorner(newest, newest);
+    // A constant speed-bias (IMU factors off) is not estimated: report it as unknown.
+    if (newest < 15) C.bottomRightCorner<9, 9>() = Eigen::Matrix<double, 9, 9>::Identity() * kUnknownVariance;
+    if (enu) out.enu_alignment = Mat4(X.topRightCorner(enu, enu));
+  }
+  // Ceres' tangent [dp, d, v, b_g, b_a], q (+) d = Exp(2 d) q, to StateEstimate's
+  // [dtheta_right, dp, dv, db_g, db_a]: dtheta_right = 2 R^T d.
+  Mat15 T = Mat15::Zero();
+  T.block<3, 3>(0, 3) = 2.0 * s.T_W_B().rotation().transpose();
+  T.block<3, 3>(3, 0).setIdentity();
+  T.block<9, 9>(6, 6).setIdentity();
+  Mat15 P = T * C * T.transpose();
+  out.state = 0.5 * (P + P.transpose());
+  if (!out.state.allFinite() || (out.enu_alignment && !out.enu_alignment->allFinite())) return std::nullopt;
+  return out;
+}
+
+}  // namespace navaid::estimation

@@ -1,0 +1,187 @@
+#pragma once
+// Private to the sliding-window estimator (sliding_window_estimator.cpp and the files of
+// src/sliding_window/): the window's state records, tuning constants and the Impl that the public
+// class hides. Not installed, not included by anything else.
+#include <ceres/ceres.h>
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "navaid/core/camera.hpp"
+#include "navaid/estimation/estimator_config.hpp"
+#include "navaid/estimation/factors/pose_parametrization.hpp"
+#include "navaid/estimation/feature_track_store.hpp"
+#include "navaid/estimation/gps_registration.hpp"
+#include "navaid/estimation/imu_preintegration.hpp"
+#include "navaid/estimation/marginalization.hpp"
+#include "navaid/estimation/sliding_window_estimator.hpp"
+#include "navaid/estimation/state_prior_factor.hpp"
+
+namespace navaid::estimation::sliding_window {
+
+
+// Re-integrate a preintegration when the bias estimate left its linearization point this far
+// (the first-order correction is good well beyond; VINS uses similar values).
+inline constexpr double kRepropagateGyro = 5e-3;   // [rad/s]
+inline constexpr double kRepropagateAccel = 5e-2;  // [m/s^2]
+// Feature depths outside this range after a solve are failures (VINS-Mono removes them too).
+inline constexpr double kMinFeatureDepth = 0.05;  // [m]
+inline constexpr double kMaxFeatureDepth = 500.0;
+// Triangulation needs this much angle between the extreme rays.
+inline constexpr double kMinTriangulationAngle = 1.0 * M_PI / 180.0;
+// Gauge prior of the first state (position and yaw define W) and, with marginalization off, of
+// the oldest keyframe that holds the window in place.
+inline constexpr double kGaugeSigma = 1e-3;
+inline constexpr double kPinnedPoseSigma = 1e-4;
+inline constexpr double kLooseSpeedBiasSigma = 1e2;
+// Covariance reported before initialization (nothing is known).
+inline constexpr double kUnknownVariance = 1e4;
+// Height offset of T_ENU_W when the registration had no fix heights [m].
+inline constexpr double kUnregisteredHeightSigma = 100.0;
+// Prior of the magnetic heading of W: only a starting point (the first samples' heading depends
+// on the still start's roll and pitch, which the accelerometer bias tilts: a fixed reference
+// measured 0.025 rad of yaw error on lab-walk-1), and of its unused translation part.
+inline constexpr double kMagHeadingPriorSigma = 1.0;  // [rad]
+inline constexpr double kMagUnusedPriorSigma = 1.0;
+
+struct WindowState {
+  std::uint64_t id = 0;
+  Timestamp t = 0;  // IMU clock
+  double pose[kPoseSize] = {0, 0, 0, 0, 0, 0, 1};
+  double speed_bias[kSpeedBiasSize] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  bool keyframe = false;
+  std::optional<ImuPreintegration> imu;  // from the previous state of the window
+  std::optional<GpsFix> gps;             // a fix taken at this state's time (within half a frame)
+  std::optional<Vec3> mag_B;             // calibrated field at this state's time
+  bool mag_decided = false;              // the samples around t have arrived (mag_B set or none usable)
+  // Joint GPS with multipath (gps.multipath_fraction > 0): the fix's bias b (ENU), a Gauss-Markov
+  // process linked to the previous fix's bias while that is in the window, or started from its
+  // stationary prior N(0, multipath covariance) when the chain has no predecessor.
+  bool has_gps_bias = false;
+  double gps_bias[3] = {0, 0, 0};
+  Mat3 gps_multipath_covariance = Mat3::Zero();
+  std::optional<std::uint64_t> gps_bias_previous;
+  std::shared_ptr<MarginalizationPrior> gps_bias_prior;
+
+  SE3 T_W_B() const { return pose_from_block(pose); }
+  Vec3 v() const { return Vec3(speed_bias[0], speed_bias[1], speed_bias[2]); }
+  Vec3 b_g() const { return Vec3(speed_bias[3], speed_bias[4], speed_bias[5]); }
+  Vec3 b_a() const { return Vec3(speed_bias[6], speed_bias[7], speed_bias[8]); }
+};
+
+struct Residual {
+  std::shared_ptr<ceres::CostFunction> cost;
+  std::shared_ptr<ceres::LossFunction> loss;
+  std::vector<double*> blocks;
+};
+
+struct NewestCovariance {
+  Mat15 state;
+  std::optional<Mat4> enu_alignment;  // [yaw, t_x, t_y, t_z] when T_ENU_W is in the window
+};
+
+struct VisualCount {
+  std::size_t features = 0;        // tracks with factors that the newest frame observes
+  std::size_t depth_features = 0;  // ... of which with a depth factor
+  std::size_t all_features = 0;    // tracks with factors in the window
+};
+
+}  // namespace navaid::estimation::sliding_window
+
+namespace navaid::estimation {
+
+using namespace sliding_window;  // private header of one class
+
+struct SlidingWindowEstimator::Impl {
+  EstimatorConfig cfg;
+  CameraCalibration camera;
+  std::shared_ptr<const CameraModel> camera_model;
+  ImuNoise imu_noise;
+  double focal_px = 0;
+  double sigma_lambda = 0;  // 0: no depth noise model (depth factors unusable)
+  Timestamp camera_to_imu_ns = 0;
+  double extrinsic[kPoseSize];
+  // Online camera-IMU calibration (estimator.extrinsic.estimate): the calibration's T_B_C as a
+  // Gaussian prior on the extrinsic block, which is otherwise held constant.
+  std::shared_ptr<MarginalizationPrior> extrinsic_prior;
+  std::shared_ptr<ceres::LossFunction> loss;
+
+  // GPS: fixes wait for the frame nearest to them; T_ENU_W = [yaw, t] joins the window once the
+  // eLabrador registration of the first fixes against the VIO track succeeds.
+  std::optional<GeodeticOrigin> origin;
+  Vec3 gps_lever_arm_B = Vec3::Zero();
+  std::shared_ptr<ceres::LossFunction> gps_loss;
+  std::deque<GpsFix> pending_fixes;
+  std::vector<GpsRegistrationPair> registration_pairs;
+  bool enu_registered = false;
+  double enu_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
+  std::shared_ptr<MarginalizationPrior> enu_prior;  // the registration's estimate and covariance
+  std::optional<std::uint64_t> last_gps_bias_state;  // newest state with a multipath bias
+  // Decoupled GPS: the latest registration over the fixes (T_ENU_W outside the window).
+  std::optional<SE3> decoupled_T_ENU_W;
+  Mat4 decoupled_covariance = Mat4::Zero();
+
+  // Magnetometer: calibrated samples; the factors tie each state's heading to magnetic north
+  // through T_ENU_W when it is in the window (joint GPS, registered), otherwise through
+  // mag_alignment = [psi, 0, 0, 0]: psi, the heading of W from magnetic north, is a window block
+  // started from the first samples, with a weak prior (the translation part is unused, held at 0).
+  std::deque<MagSample> mag;
+  double mag_sigma_yaw = 0;
+  bool mag_referenced = false;
+  double mag_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
+  std::shared_ptr<MarginalizationPrior> mag_prior;
+
+  std::deque<std::unique_ptr<WindowState>> window;  // oldest first; addresses stay put
+  FeatureTrackStore tracks;
+  std::vector<ImuSample> imu;
+  std::deque<FeatureFrame> pending;
+  std::shared_ptr<MarginalizationPrior> marginal_prior;
+  std::shared_ptr<StatePriorFactor> state_prior;
+  std::uint64_t state_prior_id = 0;
+  std::uint64_t next_id = 0;
+  bool initialized = false;
+  Timestamp last_event_t = std::numeric_limits<Timestamp>::min();
+  std::optional<Timestamp> imu_only_since;
+  std::optional<StateEstimate> last_estimate;
+  EstimatorStatistics stats;
+
+  Impl(const RigCalibration& rig, const EstimatorConfig& config, const std::string& camera_name,
+       const std::optional<GeodeticOrigin>& geodetic_origin);
+  void attach_gps(WindowState& s);
+  void start_gps_bias(WindowState& s);
+  void register_gps(const WindowState& s);
+  void reregister_gps(const WindowState& s);
+  GpsRegistration registration(const std::vector<GpsRegistrationPair>& pairs) const;
+  void attach_mag(WindowState& s);
+  void set_mag_reference(const Vec3& field_B, const SE3& T_W_B);
+  double* mag_alignment_block() { return enu_registered ? enu_alignment : mag_alignment; }
+  Vec3 fix_enu(const GpsFix& fix) const;
+  Impl(const Impl& other);
+
+  std::vector<StateEstimate> process(const SensorEvent& event);
+  StateEstimate handle_frame(const FeatureFrame& frame);
+  StateEstimate initialize(const FeatureFrame& frame, Timestamp t);
+  void add_observations(std::uint64_t frame_id, const FeatureFrame& frame);
+  bool decide_keyframe(const WindowState& last_keyframe, const WindowState& newest, std::size_t observed) const;
+  void initialize_tracks();
+  std::optional<double> triangulate(const FeatureTrack& track) const;
+  const WindowState* state(std::uint64_t id) const;
+  SE3 T_W_C(const WindowState& s) const { return s.T_W_B() * pose_from_block(extrinsic); }
+
+  std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* fixed_inverse_depths);
+  /// Solves the window; with `covariance`, also the newest state's covariance (nullopt on failure).
+  VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
+  std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem);
+  void remove_failed_tracks();
+  StateEstimate estimate_of(const WindowState& s, Timestamp frame_t, EstimatorMode mode, const Mat15& cov) const;
+  void slide_out_oldest();
+  void reanchor_tracks_of(const WindowState& leaving);
+  void trim_imu();
+  Mat15 initial_covariance(const Quat& q) const;
+};
+
+}  // namespace navaid::estimation
