@@ -247,6 +247,7 @@ void run(const RunArgs& a) {
   j["marginalizations"] = st.marginalizations;
   j["marginalization_failures"] = st.marginalization_failures;
   j["covariance_failures"] = st.covariance_failures;
+  if (est_config.estimate_time_offset) j["camera_time_offset_s"] = estimator.camera_time_offset_s();
   if (est_config.estimate_extrinsic) {
     const SE3 T = estimator.camera_extrinsic();
     j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},

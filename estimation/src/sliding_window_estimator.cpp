@@ -24,6 +24,7 @@
 #include "navaid/estimation/factors/magnetometer_yaw_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
+#include "navaid/estimation/factors/time_offset_factors.hpp"
 #include "navaid/estimation/feature_track_store.hpp"
 #include "navaid/estimation/gps_registration.hpp"
 #include "navaid/estimation/imu_preintegration.hpp"
@@ -76,6 +77,10 @@ SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorCon
   validate(imu_noise, "calibration: imu");
   focal_px = std::sqrt(camera.fx * camera.fy);
   camera_to_imu_ns = static_cast<Timestamp>(std::llround(camera.time_offset_s * 1e9));
+  time_offset[0] = camera.time_offset_s;
+  if (cfg.estimate_time_offset)
+    time_offset_prior = std::make_shared<MarginalizationPrior>(gaussian_block_prior(
+        time_offset, BlockKind::kEuclidean, 1, Eigen::MatrixXd::Constant(1, 1, 1.0 / cfg.time_offset_sigma_s)));
   pose_to_block(camera.T_B_C, extrinsic);
   if (cfg.estimate_extrinsic) {
     // Pose tangent [dp, d] with rotation vector 2 d (pose_parametrization.hpp).
@@ -106,6 +111,8 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       sigma_lambda(o.sigma_lambda),
       camera_to_imu_ns(o.camera_to_imu_ns),
       extrinsic_prior(o.extrinsic_prior ? std::make_shared<MarginalizationPrior>(*o.extrinsic_prior) : nullptr),
+      time_offset_prior(o.time_offset_prior ? std::make_shared<MarginalizationPrior>(*o.time_offset_prior) : nullptr),
+      last_seen(o.last_seen),
       loss(o.loss),
       origin(o.origin),
       gps_lever_arm_B(o.gps_lever_arm_B),
@@ -139,6 +146,8 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
   moved[o.enu_alignment] = enu_alignment;
   moved[o.mag_alignment] = mag_alignment;
   moved[o.extrinsic] = extrinsic;
+  time_offset[0] = o.time_offset[0];
+  moved[o.time_offset] = time_offset;
   for (const auto& s : o.window) {
     window.push_back(std::make_unique<WindowState>(*s));
     moved[s->pose] = window.back()->pose;
@@ -153,6 +162,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
   if (enu_prior) enu_prior->remap(moved);
   if (mag_prior) mag_prior->remap(moved);
   if (extrinsic_prior) extrinsic_prior->remap(moved);
+  if (time_offset_prior) time_offset_prior->remap(moved);
   if (o.marginal_prior) {
     marginal_prior = std::make_shared<MarginalizationPrior>(*o.marginal_prior);
     marginal_prior->remap(moved);
@@ -272,6 +282,7 @@ StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame
 void SlidingWindowEstimator::Impl::add_observations(std::uint64_t frame_id, const FeatureFrame& frame) {
   std::vector<std::pair<std::uint64_t, TrackObservation>> obs;
   obs.reserve(frame.features.size());
+  std::unordered_map<std::uint64_t, LastSeen> seen;
   for (const auto& f : frame.features) {
     const auto m = camera_model->undistort(camera_model->distorted_from_pixel(f.uv));
     if (!m) continue;
@@ -279,8 +290,19 @@ void SlidingWindowEstimator::Impl::add_observations(std::uint64_t frame_id, cons
     o.m = *m;
     o.uv = f.uv;
     if (cfg.use_depth && f.depth_m && std::isfinite(*f.depth_m) && *f.depth_m > 0) o.depth_m = f.depth_m;
+    o.td0_s = ns_to_seconds(camera_to_imu_ns);
+    // Backward difference over the previous frame that saw the track (frames keep their camera
+    // stamps here: only differences enter).
+    const auto last = last_seen.find(f.track_id);
+    if (last != last_seen.end() && frame.t > last->second.t) {
+      const double dt = ns_to_seconds(frame.t - last->second.t);
+      o.velocity = (o.m - last->second.m) / dt;
+      if (o.depth_m && last->second.depth_m) o.depth_rate_mps = (*o.depth_m - *last->second.depth_m) / dt;
+    }
+    seen[f.track_id] = {frame.t, o.m, o.depth_m};
     obs.emplace_back(f.track_id, o);
   }
+  last_seen = std::move(seen);
   tracks.add_frame(frame_id, obs);
 }
 
@@ -360,6 +382,8 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
   if (mag_prior) out.push_back({std::make_shared<MarginalizationFactor>(mag_prior), nullptr, mag_prior->blocks});
   if (extrinsic_prior)
     out.push_back({std::make_shared<MarginalizationFactor>(extrinsic_prior), nullptr, extrinsic_prior->blocks});
+  if (time_offset_prior)
+    out.push_back({std::make_shared<MarginalizationFactor>(time_offset_prior), nullptr, time_offset_prior->blocks});
   if (enu_registered) {
     for (auto& s : window) {
       if (!s->gps) continue;
@@ -421,12 +445,22 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
       if (!(p_ct.z() > kMinFeatureDepth)) continue;
       sees_newest |= o.frame_id == newest_id;
       std::vector<double*> blocks{anchor->pose, target->pose, extrinsic, &track.inverse_depth};
+      const TimedObservation ta{a.m, a.velocity, a.td0_s}, to{o.m, o.velocity, o.td0_s};
+      if (cfg.estimate_time_offset) blocks.push_back(time_offset);
       if (near && cfg.use_depth_3d && o.depth_m && *o.depth_m <= cfg.far_threshold_m) {
-        r.push_back({std::make_shared<Depth3dFactor>(a.m, o.m, *o.depth_m, focal_px, sigma_lambda, cfg.pixel_sigma_px),
-                     loss, blocks});
+        if (cfg.estimate_time_offset)
+          r.push_back({std::make_shared<Depth3dTdFactor>(ta, to, *o.depth_m, o.depth_rate_mps, focal_px, sigma_lambda,
+                                                         cfg.pixel_sigma_px),
+                       loss, blocks});
+        else
+          r.push_back({std::make_shared<Depth3dFactor>(a.m, o.m, *o.depth_m, focal_px, sigma_lambda, cfg.pixel_sigma_px),
+                       loss, blocks});
         depth_factor = true;
       } else if (cfg.use_reprojection) {
-        r.push_back({std::make_shared<ReprojectionFactor>(a.m, o.m, focal_px, cfg.pixel_sigma_px), loss, blocks});
+        if (cfg.estimate_time_offset)
+          r.push_back({std::make_shared<ReprojectionTdFactor>(ta, to, focal_px, cfg.pixel_sigma_px), loss, blocks});
+        else
+          r.push_back({std::make_shared<ReprojectionFactor>(a.m, o.m, focal_px, cfg.pixel_sigma_px), loss, blocks});
       }
     }
     if (r.empty()) continue;
@@ -481,6 +515,8 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   ++stats.solves;
   stats.features_in_last_solve = count.all_features;
   stats.depth_features_in_last_solve = count.depth_features;
+  // New frames are placed in the IMU clock with the current offset estimate.
+  if (cfg.estimate_time_offset) camera_to_imu_ns = static_cast<Timestamp>(std::llround(time_offset[0] * 1e9));
   if (covariance) *covariance = newest_covariance(problem);
   return count;
 }
@@ -706,6 +742,7 @@ std::size_t SlidingWindowEstimator::optimize() {
 
 const EstimatorConfig& SlidingWindowEstimator::config() const { return impl_->cfg; }
 SE3 SlidingWindowEstimator::camera_extrinsic() const { return pose_from_block(impl_->extrinsic); }
+double SlidingWindowEstimator::camera_time_offset_s() const { return impl_->time_offset[0]; }
 const EstimatorStatistics& SlidingWindowEstimator::statistics() const { return impl_->stats; }
 std::size_t SlidingWindowEstimator::window_keyframes() const {
   std::size_t n = 0;

@@ -35,6 +35,7 @@ EstimatorRun run_estimator(const io::Recording& rec, const std::vector<std::stri
     for (auto& s : estimator.finish()) r.estimates.push_back(s);
   r.stats = estimator.statistics();
   r.camera_extrinsic = estimator.camera_extrinsic();
+  r.camera_time_offset_s = estimator.camera_time_offset_s();
   return r;
 }
 

@@ -17,6 +17,7 @@ struct EstimatorRun {
   std::vector<StateEstimate> estimates;
   EstimatorStatistics stats;
   SE3 camera_extrinsic;  ///< T_B_C at the end (the online estimate when estimated)
+  double camera_time_offset_s = 0;  ///< td at the end (the online estimate when estimated)
 };
 
 /// Every event of `rec` through a SlidingWindowEstimator configured by `overrides` (the

@@ -46,6 +46,7 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     if (with_enu) extra.emplace_back(enu_alignment, kEnuAlignmentSize);
     if (problem.HasParameterBlock(mag_alignment)) extra.emplace_back(mag_alignment, kEnuAlignmentSize);
     if (!problem.IsParameterBlockConstant(extrinsic)) extra.emplace_back(extrinsic, kPoseTangentSize);
+    if (problem.HasParameterBlock(time_offset)) extra.emplace_back(time_offset, 1);
     for (const auto& w : window)
       if (problem.HasParameterBlock(w->gps_bias)) extra.emplace_back(w->gps_bias, 3);
     for (const auto& [block, size] : extra) {
@@ -62,7 +63,7 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     }
     std::vector<double*> all;
     problem.GetParameterBlocks(&all);
-    std::set<const double*> states{enu_alignment, mag_alignment, extrinsic};
+    std::set<const double*> states{enu_alignment, mag_alignment, extrinsic, time_offset};
     for (const auto& w : window) states.insert(w->pose), states.insert(w->speed_bias), states.insert(w->gps_bias);
     for (double* b : all)
       if (!states.count(b) && problem.ParameterBlockSize(b) == 1 && !problem.IsParameterBlockConstant(b))

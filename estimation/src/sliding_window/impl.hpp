@@ -8,6 +8,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,18 @@ struct SlidingWindowEstimator::Impl {
   // Online camera-IMU calibration (estimator.extrinsic.estimate): the calibration's T_B_C as a
   // Gaussian prior on the extrinsic block, which is otherwise held constant.
   std::shared_ptr<MarginalizationPrior> extrinsic_prior;
+  // Online camera-IMU time offset (estimator.time_offset.estimate): td [s], t_imu = t_cam + td,
+  // started from the calibration with a Gaussian prior; new frames are placed with the current
+  // estimate (camera_to_imu_ns follows it).
+  double time_offset[1] = {0};
+  std::shared_ptr<MarginalizationPrior> time_offset_prior;
+  // The previous frame's observation of each track (velocities for the time offset).
+  struct LastSeen {
+    Timestamp t;
+    Eigen::Vector2d m;
+    std::optional<double> depth_m;
+  };
+  std::unordered_map<std::uint64_t, LastSeen> last_seen;
   std::shared_ptr<ceres::LossFunction> loss;
 
   // GPS: fixes wait for the frame nearest to them; T_ENU_W = [yaw, t] joins the window once the

@@ -16,6 +16,11 @@ struct TrackObservation {
   Eigen::Vector2d m = Eigen::Vector2d::Zero();   ///< undistorted normalized coordinates (x/z, y/z)
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();  ///< measured pixel (parallax)
   std::optional<double> depth_m;                 ///< measured depth along the optical axis
+  // For the online time offset (estimator.time_offset.estimate): the feature's image velocity and
+  // depth rate from its previous frame, and the offset the frame's time was corrected with.
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  ///< dm/dt [1/s]
+  double depth_rate_mps = 0;                           ///< dZ/dt [m/s] (0 unknown)
+  double td0_s = 0;
 };
 
 struct FeatureTrack {

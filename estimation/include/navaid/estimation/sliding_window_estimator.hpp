@@ -92,6 +92,9 @@ class SlidingWindowEstimator {
   /// The camera-IMU extrinsic T_B_C in use: the calibration's, or the online estimate
   /// (estimator.extrinsic.estimate).
   SE3 camera_extrinsic() const;
+  /// The camera-IMU time offset td in use, t_imu = t_cam + td [s]: the calibration's, or the online
+  /// estimate (estimator.time_offset.estimate).
+  double camera_time_offset_s() const;
   const EstimatorStatistics& statistics() const;
   /// Keyframes currently in the window.
   std::size_t window_keyframes() const;
