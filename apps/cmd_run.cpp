@@ -247,6 +247,12 @@ void run(const RunArgs& a) {
   j["marginalizations"] = st.marginalizations;
   j["marginalization_failures"] = st.marginalization_failures;
   j["covariance_failures"] = st.covariance_failures;
+  j["initialization"] = {{"method", estimation::to_string(est_config.init_method)},
+                         {"attempts", st.initialization_attempts},
+                         {"failures", st.initialization_failures},
+                         {"last_failure", st.last_initialization_failure}};
+  if (st.initialized_at_s >= 0 && !recording.imu.empty())
+    j["initialization"]["time_s"] = st.initialized_at_s - ns_to_seconds(recording.imu.front().t);
   if (est_config.estimate_time_offset) j["camera_time_offset_s"] = estimator.camera_time_offset_s();
   if (est_config.estimate_extrinsic) {
     const SE3 T = estimator.camera_extrinsic();

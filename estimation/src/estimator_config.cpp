@@ -116,6 +116,11 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.covariance_method =
       parse_enum(c.get_string("estimator.covariance", "schur", {"schur", "ceres", "off"}), cov_names, covs);
 
+  static const char* const init_names[] = {"still", "hpnp", "pnp"};
+  static const InitializationMethod inits[] = {InitializationMethod::kStill, InitializationMethod::kHybridPnp,
+                                               InitializationMethod::kPnp};
+  e.init_method = parse_enum(c.get_string("estimator.initialization.method", "still", {"still", "hpnp", "pnp"}),
+                             init_names, inits);
   e.still_duration_s = c.get_double("estimator.initialization.still_duration", e.still_duration_s, {0.05, 60});
   e.init_sigma_roll_pitch_rad =
       c.get_double("estimator.initialization.sigma_roll_pitch", e.init_sigma_roll_pitch_rad, {1e-6, 1});
@@ -154,6 +159,15 @@ std::string to_string(LinearSolverKind kind) {
     case LinearSolverKind::kDenseSchur: return "dense_schur";
     case LinearSolverKind::kSparseSchur: return "sparse_schur";
     case LinearSolverKind::kSparseNormalCholesky: return "sparse_normal_cholesky";
+  }
+  return "?";
+}
+
+std::string to_string(InitializationMethod method) {
+  switch (method) {
+    case InitializationMethod::kStill: return "still";
+    case InitializationMethod::kHybridPnp: return "hpnp";
+    case InitializationMethod::kPnp: return "pnp";
   }
   return "?";
 }

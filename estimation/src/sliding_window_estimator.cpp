@@ -241,44 +241,6 @@ StateEstimate SlidingWindowEstimator::Impl::estimate_of(const WindowState& s, Ti
   return e;
 }
 
-StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame, Timestamp t) {
-  const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
-  const std::vector<ImuSample> samples = imu_samples_between(imu, t - still_ns, t);
-  Vec3 accel = Vec3::Zero();
-  for (const auto& s : samples) accel += s.accel;
-  accel /= static_cast<double>(samples.size());
-  if (!(accel.norm() > 1.0))
-    throw Error("estimator: the mean specific force of the still start is " + std::to_string(accel.norm()) +
-                " m/s^2; cannot find gravity");
-  // At rest the accelerometer measures -g: R_W_B accel points up. Yaw is unobservable: 0.
-  const Quat q_up = Quat::FromTwoVectors(accel, Vec3::UnitZ());
-  const Vec3 rpy = rpy_from_quat(q_up);
-  const Quat q = quat_from_rpy(rpy.x(), rpy.y(), 0.0);
-
-  auto s = std::make_unique<WindowState>();
-  s->id = next_id++;
-  s->t = t;
-  s->keyframe = true;
-  pose_to_block(SE3(q, Vec3::Zero()), s->pose);
-  const Mat15 P0 = initial_covariance(q);
-  state_prior = std::make_shared<StatePriorFactor>(s->T_W_B(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), P0);
-  state_prior_id = s->id;
-  if (cfg.use_mag) {
-    // Standing still, the mean field of the still start is the best first guess of psi.
-    Vec3 field = Vec3::Zero();
-    int n = 0;
-    for (const auto& m : mag)
-      if (m.t >= t - still_ns && m.t <= t) field += m.field, ++n;
-    if (n > 0 && field.norm() > 0) set_mag_reference(field / n, s->T_W_B());
-  }
-  window.push_back(std::move(s));
-  add_observations(window.back()->id, frame);
-  initialize_tracks();
-  initialized = true;
-  ++stats.keyframes;
-  return estimate_of(*window.back(), frame.t, EstimatorMode::kInitializing, P0);
-}
-
 void SlidingWindowEstimator::Impl::add_observations(std::uint64_t frame_id, const FeatureFrame& frame) {
   std::vector<std::pair<std::uint64_t, TrackObservation>> obs;
   obs.reserve(frame.features.size());
@@ -615,14 +577,10 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   ++stats.frames;
   const Timestamp t = frame.t + camera_to_imu_ns;
   const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
+  if (!initialized && cfg.init_method != InitializationMethod::kStill)
+    return collect_for_visual_initialization(frame, t);
   if (!initialized) {
-    if (imu.empty() || imu.front().t > t - still_ns) {
-      StateEstimate e;
-      e.t = frame.t;
-      e.covariance = Mat15::Identity() * kUnknownVariance;
-      e.mode = EstimatorMode::kInitializing;
-      return e;
-    }
+    if (imu.empty() || imu.front().t > t - still_ns) return initializing_estimate(frame.t);
     last_estimate = initialize(frame, t);
     return *last_estimate;
   }
@@ -650,6 +608,12 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   // A frame carrying a fix stays in the window, so that its GPS factor does.
   const bool keyframe = decide_keyframe(*window[window.size() - 2], newest, frame.features.size()) ||
                         (newest.gps && enu_registered);
+  return solve_newest(frame, keyframe);
+}
+
+StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& frame, bool keyframe) {
+  WindowState& newest = *window.back();
+  const Timestamp t = newest.t;
   initialize_tracks();
 
   std::optional<NewestCovariance> c;

@@ -1,7 +1,9 @@
 #include "estimator_fixtures.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
+#include <optional>
 
 #include "navaid/core/config.hpp"
 #include "navaid/io/event_stream.hpp"
@@ -37,6 +39,23 @@ EstimatorRun run_estimator(const io::Recording& rec, const std::vector<std::stri
   r.camera_extrinsic = estimator.camera_extrinsic();
   r.camera_time_offset_s = estimator.camera_time_offset_s();
   return r;
+}
+
+double position_rmse(const std::vector<StateEstimate>& est, const std::vector<GroundTruthState>& gt) {
+  std::optional<SE3> align;
+  double sq = 0;
+  int n = 0;
+  for (const auto& s : est) {
+    if (s.mode == EstimatorMode::kInitializing) continue;
+    const SE3 g = groundtruth_at(gt, s.t);
+    if (!align) {
+      const Quat dq(Eigen::AngleAxisd(yaw_of(g.q) - yaw_of(s.T_W_B.q), Vec3::UnitZ()));
+      align = SE3(dq, g.t - dq * s.T_W_B.t);
+    }
+    sq += ((*align * s.T_W_B).t - g.t).squaredNorm();
+    ++n;
+  }
+  return std::sqrt(sq / n);
 }
 
 SE3 groundtruth_at(const std::vector<GroundTruthState>& gt, Timestamp t) {

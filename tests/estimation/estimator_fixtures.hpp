@@ -24,6 +24,10 @@ struct EstimatorRun {
 /// recording's geodetic origin passed on); with `flush`, the estimates of finish() appended.
 EstimatorRun run_estimator(const io::Recording& rec, const std::vector<std::string>& overrides, bool flush = true);
 
+/// Position RMSE of the estimates after the 4-DOF alignment (yaw + translation) fixed at the first
+/// estimate that is not initializing (the estimator's W has yaw 0 there) [m].
+double position_rmse(const std::vector<StateEstimate>& est, const std::vector<GroundTruthState>& gt);
+
 /// Ground-truth pose at t, interpolated between the samples around it (clamped at the ends).
 SE3 groundtruth_at(const std::vector<GroundTruthState>& gt, Timestamp t);
 

@@ -31,23 +31,7 @@ double rotation_error_deg(const SE3& a, const SE3& b) {
   return Eigen::AngleAxisd(a.q * b.q.conjugate()).angle() * 180.0 / M_PI;
 }
 
-// Position RMSE after the 4-DOF alignment fixed at the first estimate (W has yaw 0 there).
-double position_rmse(const std::vector<StateEstimate>& est, const std::vector<GroundTruthState>& gt) {
-  std::optional<SE3> align;
-  double sq = 0;
-  int n = 0;
-  for (const auto& s : est) {
-    if (s.mode == EstimatorMode::kInitializing) continue;
-    const SE3 g = testing::groundtruth_at(gt, s.t);
-    if (!align) {
-      const Quat dq(Eigen::AngleAxisd(yaw_of(g.q) - yaw_of(s.T_W_B.q), Vec3::UnitZ()));
-      align = SE3(dq, g.t - dq * s.T_W_B.t);
-    }
-    sq += ((*align * s.T_W_B).t - g.t).squaredNorm();
-    ++n;
-  }
-  return std::sqrt(sq / n);
-}
+using testing::position_rmse;
 
 TEST(SlidingWindowCalibration, OnlineExtrinsicRecoversAWrongMount) {
   const io::Recording& truth = walk();

@@ -178,6 +178,12 @@ struct SlidingWindowEstimator::Impl {
   std::vector<StateEstimate> process(const SensorEvent& event);
   StateEstimate handle_frame(const FeatureFrame& frame);
   StateEstimate initialize(const FeatureFrame& frame, Timestamp t);
+  StateEstimate collect_for_visual_initialization(const FeatureFrame& frame, Timestamp t);
+  bool visual_initialization();
+  StateEstimate initializing_estimate(Timestamp frame_t) const;
+  /// The rest of a frame once its state is in the window: solve, mode, covariance, estimate, then
+  /// keep it as a keyframe (sliding the window) or drop it.
+  StateEstimate solve_newest(const FeatureFrame& frame, bool keyframe);
   void add_observations(std::uint64_t frame_id, const FeatureFrame& frame);
   bool decide_keyframe(const WindowState& last_keyframe, const WindowState& newest, std::size_t observed) const;
   void initialize_tracks();

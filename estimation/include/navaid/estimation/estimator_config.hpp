@@ -20,6 +20,10 @@ enum class CovarianceMethod { kSchur, kCeres, kOff };
 /// How GPS enters (factors.gps): T_ENU_W and GPS factors in the window ("joint"), or the VIO window
 /// alone with T_ENU_W re-registered over the fixes at every fix (eLabrador, "decoupled").
 enum class GpsMode { kJoint, kDecoupled };
+/// How the window starts: from a still start (gravity from the mean accelerometer), or by the
+/// visual-inertial initialization (window SfM + alignment, docs/initialization.md) whose pose change
+/// is HPnP (W-ROMA RGBD-VIO) or 3D-2D PnP (VINS-RGBD).
+enum class InitializationMethod { kStill, kHybridPnp, kPnp };
 
 struct EstimatorConfig {
   int window_size = 10;  ///< keyframes in the window
@@ -65,8 +69,9 @@ struct EstimatorConfig {
   bool marginalization = true;
   CovarianceMethod covariance_method = CovarianceMethod::kSchur;
 
-  // Initialization (the recording starts standing still).
-  double still_duration_s = 0.5;
+  // Initialization.
+  InitializationMethod init_method = InitializationMethod::kStill;
+  double still_duration_s = 0.5;  ///< still: IMU data averaged for gravity
   double init_sigma_roll_pitch_rad = 0.01;
   double init_sigma_velocity = 0.02;   ///< [m/s]
   double init_sigma_gyro_bias = 0.01;  ///< [rad/s]
@@ -116,5 +121,6 @@ std::string to_string(LossKind kind);
 std::string to_string(LinearSolverKind kind);
 std::string to_string(FarFeaturePolicy policy);
 std::string to_string(GpsMode mode);
+std::string to_string(InitializationMethod method);
 
 }  // namespace navaid::estimation

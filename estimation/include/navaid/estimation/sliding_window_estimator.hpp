@@ -57,6 +57,12 @@ struct EstimatorStatistics {
   std::size_t covariance_failures = 0;  ///< covariance could not be computed (previous one inflated)
   std::size_t features_in_last_solve = 0;
   std::size_t depth_features_in_last_solve = 0;
+  /// Visual-inertial initialization (initialization.method hpnp / pnp): attempts that failed, and
+  /// the reason of the last failure.
+  std::size_t initialization_attempts = 0;
+  std::size_t initialization_failures = 0;
+  std::string last_initialization_failure;
+  double initialized_at_s = -1;  ///< IMU-clock time of the initialization [s] (-1: not yet)
 };
 
 class SlidingWindowEstimator {
