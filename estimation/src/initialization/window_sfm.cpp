@@ -30,15 +30,21 @@ std::string fmt(double v) {
 
 Vec3 homogeneous(const Vec2& m) { return Vec3(m.x(), m.y(), 1.0); }
 
+// Point P_l in the camera of pose (q_l_C, p_l_C).
+template <class T>
+Eigen::Matrix<T, 3, 1> point_in_camera(const T* q, const T* p, const T* P) {
+  const Eigen::Map<const Eigen::Quaternion<T>> q_l_C(q);
+  const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_l_C(p), P_l(P);
+  return q_l_C.conjugate() * (P_l - p_l_C);
+}
+
 // Reprojection on the normalized plane of camera pose (q_l_C, p_l_C) and point P_l, whitened.
 struct ReprojectionResidual {
   Vec2 m;
   double weight;
   template <class T>
   bool operator()(const T* q, const T* p, const T* P, T* r) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q_l_C(q);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_l_C(p), P_l(P);
-    const Eigen::Matrix<T, 3, 1> X = q_l_C.conjugate() * (P_l - p_l_C);
+    const Eigen::Matrix<T, 3, 1> X = point_in_camera(q, p, P);
     r[0] = (X.x() / X.z() - m.x()) * weight;
     r[1] = (X.y() / X.z() - m.y()) * weight;
     return true;
@@ -51,9 +57,7 @@ struct InverseDepthResidual {
   double weight;
   template <class T>
   bool operator()(const T* q, const T* p, const T* P, T* r) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q_l_C(q);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_l_C(p), P_l(P);
-    const Eigen::Matrix<T, 3, 1> X = q_l_C.conjugate() * (P_l - p_l_C);
+    const Eigen::Matrix<T, 3, 1> X = point_in_camera(q, p, P);
     r[0] = (T(1.0) / X.z() - inverse_depth) * weight;
     return true;
   }
