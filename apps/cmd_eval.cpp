@@ -2,7 +2,6 @@
 // trajectory against ground truth; eval.json, per-pose errors and a figure drawn by
 // experiments/figures/plot_eval.py. Definitions in docs/evaluation.md.
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <fstream>
@@ -14,14 +13,12 @@
 #include "navaid/experiments/trajectory_evaluation.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
-#include "run_process.hpp"
+#include "figure_script.hpp"
 
 namespace navaid::cli {
 namespace fs = std::filesystem;
 namespace ex = navaid::experiments;
 namespace {
-
-constexpr const char* kPython = "/usr/bin/python3";  // Debian's, which has matplotlib (DESIGN.md §5)
 
 struct EvalArgs {
   fs::path est, gt, out;
@@ -133,13 +130,9 @@ void run_eval(const EvalArgs& a) {
   write_per_pose(csv_file, e);
   std::cout << "wrote " << json_file.string() << ", " << csv_file.string();
   if (!a.no_plot) {
-    const std::vector<std::string> argv{kPython, figures_dir() + "/plot_eval.py", csv_file.string(), "--out",
-                                        png_file.string(), "--title",
-                                        fmt::format("{}: ATE RMSE {:.4f} m ({})", a.est.filename().string(),
-                                                    e.ate.position.rmse, ex::to_string(e.ate.alignment))};
-    spdlog::info("running {}", fmt::join(argv, " "));
-    const int rc = run_process(argv);
-    if (rc != 0) throw Error(fmt::format("the plotting script failed (exit status {}); command: {}", rc, fmt::join(argv, " ")));
+    run_figure_script("plot_eval.py", {csv_file.string(), "--out", png_file.string(), "--title",
+                                       fmt::format("{}: ATE RMSE {:.4f} m ({})", a.est.filename().string(),
+                                                   e.ate.position.rmse, ex::to_string(e.ate.alignment))});
     std::cout << ", " << png_file.string();
   }
   std::cout << "\n";

@@ -1,7 +1,6 @@
 // navaid plot: top view and height of a recording's ground truth and GNSS track (in a local ENU
 // frame through GeographicLib), drawn by experiments/figures/plot_tracks.py.
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <fstream>
@@ -11,13 +10,11 @@
 #include "commands.hpp"
 #include "input_option.hpp"
 #include "navaid/core/geodesy.hpp"
-#include "run_process.hpp"
+#include "figure_script.hpp"
 
 namespace navaid::cli {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr const char* kPython = "/usr/bin/python3";  // Debian's, which has matplotlib (DESIGN.md §5)
 
 void write_series(const fs::path& file, const std::vector<std::pair<Timestamp, Vec3>>& points) {
   std::ofstream out(file);
@@ -58,27 +55,25 @@ void add_plot_command(CLI::App& app) {
     const io::Recording recording = io::read_input(input->path, kind);
     const fs::path data_dir = fs::path(output->string() + ".data");
     fs::create_directories(data_dir);
-    std::vector<std::string> argv{kPython, figures_dir() + "/plot_tracks.py"};
+    std::vector<std::string> args;
     if (!recording.groundtruth.empty()) {
       std::vector<std::pair<Timestamp, Vec3>> points;
       for (const auto& s : recording.groundtruth) points.emplace_back(s.t, s.T_W_B.t);
       write_series(data_dir / "groundtruth.csv", points);
-      argv.push_back("ground truth=" + (data_dir / "groundtruth.csv").string());
+      args.push_back("ground truth=" + (data_dir / "groundtruth.csv").string());
     }
     const auto gps = gps_enu(recording);
     if (!gps.empty()) {
       write_series(data_dir / "gnss_enu.csv", gps);
-      argv.push_back("GNSS fixes (ENU)=" + (data_dir / "gnss_enu.csv").string());
+      args.push_back("GNSS fixes (ENU)=" + (data_dir / "gnss_enu.csv").string());
     }
-    if (argv.size() == 2)
+    if (args.empty())
       throw IoError(input->path.string(), "has neither ground truth nor located GNSS fixes to plot");
     const bool enu_only = recording.groundtruth.empty();
-    argv.insert(argv.end(), {"--out", output->string(), "--title",
+    args.insert(args.end(), {"--out", output->string(), "--title",
                              fmt::format("{} ({})", input->path.filename().string(), recording.format)});
-    if (enu_only) argv.insert(argv.end(), {"--xlabel", "east [m]", "--ylabel", "north [m]", "--zlabel", "up [m]"});
-    spdlog::info("running {}", fmt::join(argv, " "));
-    const int rc = run_process(argv);
-    if (rc != 0) throw Error(fmt::format("the plotting script failed (exit status {}); command: {}", rc, fmt::join(argv, " ")));
+    if (enu_only) args.insert(args.end(), {"--xlabel", "east [m]", "--ylabel", "north [m]", "--zlabel", "up [m]"});
+    run_figure_script("plot_tracks.py", args);
     std::cout << "wrote " << output->string() << " (data in " << data_dir.string() << ")\n";
   });
 }

@@ -1,12 +1,12 @@
 // navaid run: the sliding-window estimator on a recording, from its feature observations or, when
-// it has none, from its images through the front end (ImageFeatureSource), writing a run folder:
-// trajectory.tum, estimates.csv, timing.csv, summary.json, config.yaml (docs/estimator.md,
-// "navaid run").
+// it has none, from its images through the front end (ImageFeatureSource), replayed on one thread
+// or, with --realtime, with the front end on a thread of its own (run_pipeline.hpp), writing a run
+// folder: trajectory.tum, estimates.csv, timing.csv, summary.json, config.yaml, topview.png
+// (docs/estimator.md, "navaid run").
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -22,11 +22,11 @@
 #include "navaid/estimation/sliding_window_estimator.hpp"
 #include "navaid/experiments/absolute_trajectory_error.hpp"
 #include "navaid/experiments/start_alignment.hpp"
-#include "navaid/io/event_stream.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
-#include "progress.hpp"
+#include "run_pipeline.hpp"
+#include "run_topview.hpp"
 
 namespace navaid::cli {
 
@@ -35,12 +35,16 @@ namespace {
 struct RunArgs {
   std::filesystem::path recording, out, config_file;
   std::vector<std::string> overrides;
+  bool realtime = false;
+  RealtimeOptions realtime_options;
+  bool no_plot = false;
 };
 
 struct AteSummary {
   double rmse_m = 0;
   double path_length_m = 0;
   std::size_t poses = 0;
+  experiments::Similarity W_to_groundtruth;
 };
 
 /// ATE RMSE of the estimated positions after the 4-DOF (position + yaw) alignment onto ground
@@ -57,17 +61,9 @@ std::optional<AteSummary> ate_4dof(const std::vector<io::StampedPose>& trajector
   AteSummary r;
   r.rmse_m = ate.position.rmse;
   r.poses = pairs.size();
+  r.W_to_groundtruth = ate.transform;
   for (std::size_t i = 1; i < pairs.size(); ++i) r.path_length_m += (pairs[i].gt.t - pairs[i - 1].gt.t).norm();
   return r;
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const double idx = p * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(idx));
-  const auto hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (idx - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
 void write_estimates_csv(const std::filesystem::path& file, const std::vector<StateEstimate>& estimates) {
@@ -96,10 +92,6 @@ void write_estimates_csv(const std::filesystem::path& file, const std::vector<St
 // Where the estimator's features come from.
 enum class Input { kFeatures, kImages };
 
-struct FrontendTime {
-  double track_ms = 0, load_ms = 0;
-};
-
 io::Recording read_recording(const std::filesystem::path& path) {
   const io::InputKind kind = io::detect_input(path);
   if (kind != io::InputKind::kNavaidRecording && kind != io::InputKind::kEuroc && kind != io::InputKind::kTumRgbd)
@@ -120,6 +112,7 @@ void load_tracking_images(RgbdFrame& frame) {
 void run(const RunArgs& a) {
   if (a.recording.empty()) throw UsageError("--recording is required");
   if (a.out.empty()) throw UsageError("--out is required");
+  if (a.realtime) validate(a.realtime_options);
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
@@ -168,54 +161,23 @@ void run(const RunArgs& a) {
   }
   std::filesystem::create_directories(a.out);
 
+  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames};
+  if (source) {
+    pipeline_input.source = &*source;
+    pipeline_input.load_images = &load_tracking_images;
+    pipeline_input.imu_prediction = frontend_config.imu_prediction;
+  }
+  PipelineResult result = a.realtime ? realtime_pipeline(pipeline_input, a.realtime_options)
+                                     : replay_pipeline(pipeline_input);
   std::vector<StateEstimate> estimates;
-  std::vector<double> frame_ms;
-  std::map<Timestamp, FrontendTime> frontend_pending;  // tracked frames waiting for their estimate
-  std::vector<std::optional<FrontendTime>> frontend_times;  // per estimate
-  const auto take_frontend_time = [&](Timestamp t) {
-    const auto it = frontend_pending.find(t);
-    if (it == frontend_pending.end()) return std::optional<FrontendTime>();
-    const FrontendTime ft = it->second;
-    frontend_pending.erase(it);
-    return std::optional<FrontendTime>(ft);
-  };
-  io::SensorEventStream stream(recording);
-  Progress progress(input == Input::kImages ? "tracking and estimating" : "estimating", camera_frames);
-  double pending_ms = 0;
-  while (auto event = stream.next()) {
-    if (!source && std::holds_alternative<RgbdFrame>(*event)) continue;  // the features stand for the images
-    const auto start = std::chrono::steady_clock::now();
-    std::optional<SensorEvent> input_event = std::move(event);
-    if (source) {
-      const bool is_frame = std::holds_alternative<RgbdFrame>(*input_event);
-      input_event = source->process(std::move(*input_event));
-      if (is_frame && input_event)
-        frontend_pending[event_time(*input_event)] = {source->stats().ms_total, source->last_load_ms()};
-    }
-    std::vector<StateEstimate> out;
-    if (input_event) out = estimator.process(*input_event);
-    pending_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (out.empty()) continue;
-    // The work since the previous estimate (IMU buffering, image loading and tracking included) is
-    // this frame's cost.
-    for (auto& e : out) {
-      frame_ms.push_back(pending_ms / static_cast<double>(out.size()));
-      frontend_times.push_back(take_frontend_time(e.t));
-      estimates.push_back(std::move(e));
-    }
-    pending_ms = 0;
-    progress.update(estimates.size());
-    // The prediction of the next frame's tracks uses the back end's gyro bias once it has one.
-    const EstimatorMode mode = estimates.back().mode;
-    if (source && mode != EstimatorMode::kInitializing && mode != EstimatorMode::kLost)
-      source->set_gyro_bias(estimates.back().b_g);
+  std::vector<double> frame_ms, estimator_ms;
+  for (const auto& r : result.frames) {
+    estimates.push_back(r.estimate);
+    frame_ms.push_back(r.ms);
+    // Replay: what the frame cost beyond tracking and loading is the estimator's.
+    estimator_ms.push_back(r.estimator_ms ? *r.estimator_ms
+                                          : r.ms - (r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0));
   }
-  for (auto& e : estimator.finish()) {
-    frame_ms.push_back(0);
-    frontend_times.push_back(take_frontend_time(e.t));
-    estimates.push_back(std::move(e));
-  }
-  progress.finish();
 
   std::vector<io::StampedPose> poses;
   for (const auto& e : estimates)
@@ -224,14 +186,20 @@ void run(const RunArgs& a) {
   write_estimates_csv(a.out / "estimates.csv", estimates);
   {
     std::ofstream timing(a.out / "timing.csv");
-    // frontend_ms and image_load_ms stay empty for feature-level input.
-    timing << "t_ns,ms,mode,frontend_ms,image_load_ms\n";
-    for (std::size_t i = 0; i < estimates.size(); ++i) {
-      timing << fmt::format("{},{:.4f},{}", estimates[i].t, frame_ms[i], to_string(estimates[i].mode));
-      if (const auto& ft = frontend_times[i])
-        timing << fmt::format(",{:.4f},{:.4f}\n", ft->track_ms, ft->load_ms);
+    // frontend_ms and image_load_ms stay empty for feature-level input; --realtime adds the
+    // estimator thread's share and the latency from the frame's arrival to its estimate.
+    timing << "t_ns,ms,mode,frontend_ms,image_load_ms" << (a.realtime ? ",estimator_ms,latency_ms" : "") << "\n";
+    for (const auto& r : result.frames) {
+      timing << fmt::format("{},{:.4f},{}", r.estimate.t, r.ms, to_string(r.estimate.mode));
+      if (const auto& ft = r.frontend)
+        timing << fmt::format(",{:.4f},{:.4f}", ft->track_ms, ft->load_ms);
       else
-        timing << ",,\n";
+        timing << ",,";
+      if (a.realtime) {
+        timing << (r.estimator_ms ? fmt::format(",{:.4f}", *r.estimator_ms) : std::string(","));
+        timing << (r.latency_ms ? fmt::format(",{:.4f}", *r.latency_ms) : std::string(","));
+      }
+      timing << "\n";
     }
   }
   std::ofstream(a.out / "config.yaml") << config.dump();
@@ -269,15 +237,21 @@ void run(const RunArgs& a) {
   }
   j["mode_fractions"] = fractions;
   j["time_per_frame_ms"] = {{"median", percentile(frame_ms, 0.5)}, {"p99", percentile(frame_ms, 0.99)},
-                            {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())}};
+                            {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())},
+                            {"estimator_median", percentile(estimator_ms, 0.5)},
+                            {"estimator_p99", percentile(estimator_ms, 0.99)}};
   if (source) {
-    std::vector<double> track_ms, load_ms;
-    for (const auto& ft : frontend_times)
-      if (ft) {
-        track_ms.push_back(ft->track_ms);
-        load_ms.push_back(ft->load_ms);
+    std::vector<double> track_ms, load_ms, live_ms;
+    for (const auto& r : result.frames)
+      if (r.frontend) {
+        track_ms.push_back(r.frontend->track_ms);
+        load_ms.push_back(r.frontend->load_ms);
+        live_ms.push_back(r.ms - r.frontend->load_ms);
       }
     auto& t = j["time_per_frame_ms"];
+    // What a camera handing over pixels would cost: the frame without decoding its PNGs.
+    t["without_image_load_median"] = percentile(live_ms, 0.5);
+    t["without_image_load_p99"] = percentile(live_ms, 0.99);
     t["frontend_median"] = percentile(track_ms, 0.5);
     t["frontend_p99"] = percentile(track_ms, 0.99);
     t["image_load_median"] = percentile(load_ms, 0.5);
@@ -285,7 +259,8 @@ void run(const RunArgs& a) {
     j["frontend"] = {{"frames_tracked", source->frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
   }
   std::string ate_text = "no ground truth";
-  if (const auto ate = ate_4dof(poses, recording.groundtruth)) {
+  const auto ate = ate_4dof(poses, recording.groundtruth);
+  if (ate) {
     j["ate"] = {{"alignment", "posyaw (4-DOF: yaw + translation)"},
                 {"rmse_m", ate->rmse_m},
                 {"path_length_m", ate->path_length_m},
@@ -337,6 +312,27 @@ void run(const RunArgs& a) {
     }
     j["gps"] = g;
   }
+  {
+    const double span_s = ns_to_seconds(recording.imu.back().t - recording.imu.front().t);
+    j["pipeline"] = {{"mode", a.realtime ? "realtime" : "replay"},
+                     {"wall_s", result.wall_s},
+                     {"recording_s", span_s},
+                     {"realtime_factor", result.wall_s > 0 ? span_s / result.wall_s : 0.0}};
+    if (a.realtime) j["realtime"] = result.realtime;
+  }
+  if (!a.no_plot) {
+    // A figure is a convenience: failing to draw it does not fail the run.
+    try {
+      const std::string title =
+          ate ? fmt::format("{}: ATE {:.3f} m over {:.1f} m (4-DOF)", a.recording.filename().string(), ate->rmse_m,
+                            ate->path_length_m)
+              : a.recording.filename().string();
+      draw_run_topview(a.out, estimates, recording.groundtruth,
+                       ate ? std::optional<experiments::Similarity>(ate->W_to_groundtruth) : std::nullopt, title);
+    } catch (const std::exception& e) {
+      spdlog::warn("topview.png not drawn: {}", e.what());
+    }
+  }
   std::ofstream(a.out / "summary.json") << j.dump(2) << "\n";
   std::string frontend_text;
   if (source)
@@ -359,7 +355,21 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--config", a->config_file, "YAML configuration (estimator.* and frontend.* keys, docs/estimator.md)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", a->overrides, "Override a key, e.g. --set estimator.depth.enabled=false (repeatable)");
-  cmd->callback([a] { run(*a); });
+  cmd->add_flag("--realtime", a->realtime,
+                "Front end and estimator on their own threads (default: deterministic single-threaded replay)");
+  auto* speed = cmd->add_option("--realtime-speed", a->realtime_options.speed,
+                                "With --realtime: frames arrive at this multiple of the recording's clock; 0 = as fast "
+                                "as possible, nothing dropped")
+                    ->capture_default_str();
+  auto* queue = cmd->add_option("--realtime-queue", a->realtime_options.queue_capacity,
+                                "With --realtime: tracked frames that may wait for the estimator")
+                    ->capture_default_str();
+  cmd->add_flag("--no-plot", a->no_plot, "Do not draw topview.png");
+  cmd->callback([a, speed, queue] {
+    if (!a->realtime && (speed->count() > 0 || queue->count() > 0))
+      throw UsageError("--realtime-speed and --realtime-queue need --realtime");
+    run(*a);
+  });
 }
 
 }  // namespace navaid::cli

@@ -1,7 +1,5 @@
 // The newest state's marginal covariance from the window's information (docs/estimator.md,
 // "Covariance").
-#include <set>
-
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
 
@@ -61,13 +59,13 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
         state_cols += kSpeedBiasSize;
       }
     }
-    std::vector<double*> all;
-    problem.GetParameterBlocks(&all);
-    std::set<const double*> states{enu_alignment, mag_alignment, extrinsic, time_offset};
-    for (const auto& w : window) states.insert(w->pose), states.insert(w->speed_bias), states.insert(w->gps_bias);
-    for (double* b : all)
-      if (!states.count(b) && problem.ParameterBlockSize(b) == 1 && !problem.IsParameterBlockConstant(b))
-        eo.parameter_blocks.push_back(b);
+    // Inverse depths in track order: Ceres lists its blocks by address, which would make the sums
+    // below (and so the covariance's last bits) depend on where the allocator put the tracks.
+    for (auto& [id, track] : tracks.tracks()) {
+      double* lambda = &track.inverse_depth;
+      if (problem.HasParameterBlock(lambda) && !problem.IsParameterBlockConstant(lambda))
+        eo.parameter_blocks.push_back(lambda);
+    }
     ceres::CRSMatrix crs;
     if (!problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
     const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> J(

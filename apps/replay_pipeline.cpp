@@ -1,0 +1,67 @@
+// navaid run's default: one thread replays the recording's events in time order through the front
+// end (image input) and the estimator; the same recording and configuration give the same
+// estimates bit for bit.
+#include <chrono>
+#include <map>
+
+#include "navaid/io/event_stream.hpp"
+#include "progress.hpp"
+#include "run_pipeline.hpp"
+
+namespace navaid::cli {
+
+PipelineResult replay_pipeline(const PipelineInput& in) {
+  using Clock = std::chrono::steady_clock;
+  const auto run_start = Clock::now();
+  PipelineResult result;
+  std::map<Timestamp, FrontendTime> frontend_pending;  // tracked frames waiting for their estimate
+  const auto take_frontend_time = [&](Timestamp t) {
+    const auto it = frontend_pending.find(t);
+    if (it == frontend_pending.end()) return std::optional<FrontendTime>();
+    const FrontendTime ft = it->second;
+    frontend_pending.erase(it);
+    return std::optional<FrontendTime>(ft);
+  };
+  io::SensorEventStream stream(in.recording);
+  Progress progress(in.source ? "tracking and estimating" : "estimating", in.camera_frames);
+  double pending_ms = 0;
+  while (auto event = stream.next()) {
+    if (!in.source && std::holds_alternative<RgbdFrame>(*event)) continue;  // the features stand for the images
+    const auto start = Clock::now();
+    std::optional<SensorEvent> input_event = std::move(event);
+    if (in.source) {
+      const bool is_frame = std::holds_alternative<RgbdFrame>(*input_event);
+      input_event = in.source->process(std::move(*input_event));
+      if (is_frame && input_event)
+        frontend_pending[event_time(*input_event)] = {in.source->stats().ms_total, in.source->last_load_ms()};
+    }
+    std::vector<StateEstimate> out;
+    if (input_event) out = in.estimator.process(*input_event);
+    pending_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (out.empty()) continue;
+    // The work since the previous estimate (IMU buffering, image loading and tracking included) is
+    // this frame's cost.
+    if (in.source)
+      if (const auto b_g = gyro_bias_feedback(out)) in.source->set_gyro_bias(*b_g);
+    for (auto& e : out) {
+      FrameRecord r;
+      r.ms = pending_ms / static_cast<double>(out.size());
+      r.frontend = take_frontend_time(e.t);
+      r.estimate = std::move(e);
+      result.frames.push_back(std::move(r));
+    }
+    pending_ms = 0;
+    progress.update(result.frames.size());
+  }
+  for (auto& e : in.estimator.finish()) {
+    FrameRecord r;
+    r.frontend = take_frontend_time(e.t);
+    r.estimate = std::move(e);
+    result.frames.push_back(std::move(r));
+  }
+  progress.finish();
+  result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();
+  return result;
+}
+
+}  // namespace navaid::cli

@@ -1,0 +1,86 @@
+#pragma once
+// How navaid run drives the estimator over a recording: deterministic single-threaded replay
+// (replay_pipeline.cpp, the default) or the real-time pipeline with the front end and the
+// estimator on their own threads (realtime_pipeline.cpp, --realtime). Both give one FrameRecord
+// per estimate, in output order.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "navaid/core/state_estimate.hpp"
+#include "navaid/estimation/frontend/image_feature_source.hpp"
+#include "navaid/estimation/sliding_window_estimator.hpp"
+#include "navaid/io/recording.hpp"
+
+namespace navaid::cli {
+
+struct FrontendTime {
+  double track_ms = 0, load_ms = 0;
+};
+
+struct FrameRecord {
+  StateEstimate estimate;
+  /// Work attributed to this frame [ms]: replay, all event handling since the previous estimate
+  /// (loading and tracking included); real time, the estimator thread's share plus the front
+  /// end's load and track time of this frame (the same work, done on two threads).
+  double ms = 0;
+  std::optional<FrontendTime> frontend;  ///< image input only
+  std::optional<double> estimator_ms;    ///< real time: the estimator thread's share of `ms`
+  std::optional<double> latency_ms;      ///< real time: from the frame's arrival to its estimate
+};
+
+struct PipelineInput {
+  const io::Recording& recording;
+  const std::string& camera;  ///< the estimator's camera
+  estimation::SlidingWindowEstimator& estimator;
+  estimation::ImageFeatureSource* source = nullptr;  ///< null: the recording's features feed the estimator
+  /// Fills a frame's intensity (and depth) before tracking.
+  estimation::ImageFeatureSource::ImageLoader load_images;
+  bool imu_prediction = false;  ///< the front end's KLT prediction uses the back end's gyro bias
+  std::size_t camera_frames = 0;  ///< for the progress bar
+};
+
+struct RealtimeOptions {
+  /// Recording seconds per wall-clock second at which frames arrive; 0 = as fast as possible
+  /// (the front end then waits for room in the queue instead of dropping).
+  double speed = 0;
+  std::size_t queue_capacity = 4;  ///< tracked frames waiting for the estimator
+};
+
+struct PipelineResult {
+  std::vector<FrameRecord> frames;
+  double wall_s = 0;  ///< from the first event to the last estimate
+  /// Real time only: per-thread timing, latency, drops (null in replay).
+  nlohmann::ordered_json realtime;
+};
+
+/// UsageError naming the option (--realtime-speed, --realtime-queue) when it is unusable.
+void validate(const RealtimeOptions& options);
+
+PipelineResult replay_pipeline(const PipelineInput& in);
+/// Error when options are unusable; an error on either thread ends the run and is rethrown here.
+PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions& options);
+
+/// The gyro bias the front end's KLT prediction takes from a new estimate: the back end's, once it
+/// has one worth using (not while initializing or lost).
+inline std::optional<Vec3> gyro_bias_feedback(const std::vector<StateEstimate>& new_estimates) {
+  if (new_estimates.empty()) return std::nullopt;
+  const EstimatorMode mode = new_estimates.back().mode;
+  if (mode == EstimatorMode::kInitializing || mode == EstimatorMode::kLost) return std::nullopt;
+  return new_estimates.back().b_g;
+}
+
+/// Linear-interpolated percentile p in [0, 1] (0 for an empty set).
+inline double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double idx = p * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(idx));
+  const auto hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (idx - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+}  // namespace navaid::cli
