@@ -5,11 +5,12 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <vector>
 
+#include "ablation_hooks.hpp"
 #include "commands.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/ablation.hpp"
-#include "progress.hpp"
 #include "run_process.hpp"
 
 namespace navaid::cli {
@@ -24,41 +25,14 @@ struct AblateArgs {
   bool plot = true;
 };
 
-void append_sets(std::vector<std::string>& argv, const std::vector<std::string>& assignments) {
-  for (const auto& a : assignments) {
-    argv.push_back("--set");
-    argv.push_back(a);
-  }
-}
-
 void run(const AblateArgs& a) {
   const experiments::AblationMatrix m = experiments::read_ablation_matrix(a.matrix);
   std::filesystem::create_directories(a.out);
-  const std::string self = self_executable();
-
-  experiments::AblationHooks hooks;
-  hooks.simulate = [&](const experiments::AblationRecording& rec, std::uint64_t seed, const std::filesystem::path& folder) {
-    std::vector<std::string> argv{self, "simulate", "--scenario", rec.scenario, "--seed", std::to_string(seed),
-                                  "--out", folder.string(), "--threads", "1", "--cache", (a.out / "render-cache").string()};
-    append_sets(argv, rec.simulate_overrides);
-    const std::string log = folder.string() + ".log";
-    if (run_process(argv, log) != 0) throw Error("navaid simulate failed (see " + log + ")");
-  };
-  hooks.run_cell = [&](const experiments::AblationCell& c, const std::filesystem::path& recording,
-                       const std::filesystem::path& folder) {
-    std::vector<std::string> argv{self, "run", "--recording", recording.string(), "--out", folder.string()};
-    append_sets(argv, m.run_overrides);
-    append_sets(argv, m.variants[c.variant].overrides);
-    return run_process(argv, experiments::cell_log(m, c, a.out).string());
-  };
-  std::unique_ptr<Progress> progress;
-  hooks.on_cell = [&](std::size_t done, std::size_t total) {
-    if (!progress) progress = std::make_unique<Progress>("ablation cells", total);
-    progress->update(done);
-  };
-
-  const auto outcomes = experiments::run_ablation(m, a.out, a.jobs, hooks);
-  if (progress) progress->finish();
+  std::vector<experiments::CellOutcome> outcomes;
+  {
+    const auto hooks = child_process_hooks(m, a.out);  // the progress bar ends with the hooks
+    outcomes = experiments::run_ablation(m, a.out, a.jobs, hooks);
+  }
   experiments::write_ablation_csv(m, outcomes, a.out / "results.csv");
   std::string md;
   for (const auto& metric : m.metrics) md += experiments::ablation_markdown(m, outcomes, metric) + "\n";

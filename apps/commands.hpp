@@ -12,6 +12,7 @@ void add_scenario_map_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_ablate_command(CLI::App& app);
+void add_reproduce_command(CLI::App& app);
 void add_consistency_command(CLI::App& app);
 void add_init_study_command(CLI::App& app);
 

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   navaid::cli::add_run_command(app);
   navaid::cli::add_eval_command(app);
   navaid::cli::add_ablate_command(app);
+  navaid::cli::add_reproduce_command(app);
   navaid::cli::add_consistency_command(app);
   navaid::cli::add_init_study_command(app);
   app.parse_complete_callback([&] {

@@ -36,6 +36,9 @@ $NAVAID run --recording "$OUT/sim-route1-features" --out "$OUT/run-route1"
 $NAVAID eval --est "$OUT/run-route1/trajectory.tum" --gt "$OUT/sim-route1-features" --align 4dof \
   --out "$OUT/eval-route1"
 
+echo "== RGBD-VIO Table I, small version: RGBD-VIO vs VINS-Fusion (RGB-D) vs VINS-RGBD on two lab walks"
+$NAVAID reproduce rgbd-vio-table1 --quick --jobs 2 --out "$OUT/reproduce-rgbd-vio-table1-quick"
+
 echo "== GNSS capture: summary, conversion to a navaid recording, ENU track"
 $NAVAID info "$DATA/gpsd-nmea/haicom-305N.log" | tee "$OUT/gnss-capture-info.txt"
 $NAVAID convert "$DATA/gpsd-nmea/haicom-305N.log" "$OUT/gnss-recording"
