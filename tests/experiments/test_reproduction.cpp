@@ -95,7 +95,15 @@ TEST(Reproduction, TheRegisteredMatrixReadsAndDefinesTheThreeMethods) {
   }
   ASSERT_EQ(m.variants.size(), 3u);
   EXPECT_EQ(m.variants[0].name, "rgbd-vio");
-  EXPECT_TRUE(m.variants[0].overrides.empty());
+  // HPnP for the proposed method, 3D-2D PnP for both baselines; depth fixed only in VINS-RGBD.
+  const auto has = [](const AblationVariant& v, const std::string& set) {
+    return std::find(v.overrides.begin(), v.overrides.end(), set) != v.overrides.end();
+  };
+  EXPECT_TRUE(has(m.variants[0], "estimator.initialization.method=hpnp"));
+  for (std::size_t v = 1; v < 3; ++v) EXPECT_TRUE(has(m.variants[v], "estimator.initialization.method=pnp"));
+  EXPECT_EQ(m.variants[2].name, "vins-rgbd");
+  EXPECT_TRUE(has(m.variants[2], "estimator.features.far_policy=fixed"));
+  EXPECT_TRUE(has(m.variants[1], "estimator.features.far_policy=free"));
   EXPECT_GE(m.seeds.size(), 5u);
   EXPECT_EQ(m.metrics.front(), "ate.rmse_m");
 }
