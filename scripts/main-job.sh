@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # navaid's main job: a full-device simulated walk (eLabrador Route 1 with the head mount: RGB-D
 # images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode
-# run through the sliding-window estimator and evaluated against ground truth, and a summary and
+# run through the sliding-window estimator and evaluated against ground truth, a small reproduction
+# of the RGBD-VIO paper's Table I (navaid reproduce rgbd-vio-table1 --quick), and a summary and
 # plot of real recorded data from ../shared/data (a GNSS receiver capture and the EuRoC V1_02
 # ground truth).
 # Usage: bash scripts/main-job.sh [OUT_DIR]   (default out/main-job)
