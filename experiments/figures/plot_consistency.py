@@ -15,6 +15,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from figure_csv import read_numeric_csv  # noqa: E402
 
 COLUMNS = ["epoch", "t", "anees_pos", "anees_rot", "runs"]
 
@@ -26,14 +27,8 @@ def main() -> int:
     parser.add_argument("--out", required=True, help="output image (.png, .pdf, .svg)")
     args = parser.parse_args()
 
-    with open(args.csv) as f:
-        header = f.readline().strip().split(",")
-    if header != COLUMNS:
-        print(f"plot_consistency: {args.csv}: expected columns {','.join(COLUMNS)}", file=sys.stderr)
-        return 2
-    data = np.atleast_2d(np.loadtxt(args.csv, delimiter=",", skiprows=1))
-    if data.size == 0:
-        print(f"plot_consistency: {args.csv} has no rows", file=sys.stderr)
+    data = read_numeric_csv(args.csv, COLUMNS, "plot_consistency")
+    if data is None:
         return 2
     with open(args.json) as f:
         stats = json.load(f)

@@ -14,6 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from figure_csv import read_numeric_csv  # noqa: E402
 
 COLUMNS = ["t", "gt_x", "gt_y", "gt_z", "est_x", "est_y", "est_z", "position_error_m", "rotation_error_deg"]
 
@@ -25,14 +26,8 @@ def main() -> int:
     parser.add_argument("--title", default="")
     args = parser.parse_args()
 
-    with open(args.csv) as f:
-        header = f.readline().strip().split(",")
-    if header != COLUMNS:
-        print(f"plot_eval: {args.csv}: expected columns {','.join(COLUMNS)}", file=sys.stderr)
-        return 2
-    data = np.atleast_2d(np.loadtxt(args.csv, delimiter=",", skiprows=1))
-    if data.size == 0:
-        print(f"plot_eval: {args.csv} has no rows", file=sys.stderr)
+    data = read_numeric_csv(args.csv, COLUMNS, "plot_eval")
+    if data is None:
         return 2
     col = {name: data[:, i] for i, name in enumerate(COLUMNS)}
     t = col["t"] - col["t"][0]
