@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/chi_square.hpp"
@@ -90,14 +91,21 @@ NeesEvaluation evaluate_nees(const std::vector<PoseWithCovariance>& estimates, c
   if (matches.empty()) throw Error("NEES: no estimate is within the tolerance of a ground-truth pose");
   std::vector<PoseWithCovariance> matched_est;
   std::vector<SE3> matched_gt;
-  NeesEvaluation r;
+  std::vector<Timestamp> t;
   for (const TimeMatch& m : matches) {
     matched_est.push_back(estimates[m.est]);
     matched_gt.push_back(truth[m.gt].T_W_B);
-    r.t.push_back(estimates[m.est].t);
+    t.push_back(estimates[m.est].t);
   }
-  r.position = position_nees(matched_est, matched_gt);
-  r.orientation = orientation_nees(matched_est, matched_gt);
+  return nees_of_pairs(matched_est, matched_gt, std::move(t), confidence);
+}
+
+NeesEvaluation nees_of_pairs(const std::vector<PoseWithCovariance>& estimates, const std::vector<SE3>& truth,
+                             std::vector<Timestamp> t, double confidence) {
+  NeesEvaluation r;
+  r.t = std::move(t);
+  r.position = position_nees(estimates, truth);
+  r.orientation = orientation_nees(estimates, truth);
   r.position_summary = summarize_nees(r.position, 3, confidence);
   r.orientation_summary = summarize_nees(r.orientation, 3, confidence);
   return r;

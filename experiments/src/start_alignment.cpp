@@ -1,6 +1,7 @@
 #include "navaid/experiments/start_alignment.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "navaid/core/errors.hpp"
 
@@ -44,16 +45,12 @@ NeesEvaluation first_state_nees(const std::vector<PoseWithCovariance>& aligned, 
                                 double confidence) {
   if (aligned.empty()) throw Error("first_state_nees: no estimate to evaluate");
   std::vector<SE3> truth;
-  NeesEvaluation r;
+  std::vector<Timestamp> t;
   for (const auto& p : aligned) {
     truth.push_back(interpolate_pose(gt, p.t));
-    r.t.push_back(p.t);
+    t.push_back(p.t);
   }
-  r.position = position_nees(aligned, truth);
-  r.orientation = orientation_nees(aligned, truth);
-  r.position_summary = summarize_nees(r.position, 3, confidence);
-  r.orientation_summary = summarize_nees(r.orientation, 3, confidence);
-  return r;
+  return nees_of_pairs(aligned, truth, std::move(t), confidence);
 }
 
 }  // namespace navaid::experiments

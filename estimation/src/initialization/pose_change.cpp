@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "navaid/core/errors.hpp"
+#include "opencv_pose.hpp"
 
 namespace navaid::estimation {
 namespace {
@@ -459,13 +460,9 @@ std::optional<PoseChange> estimate_pnp(const std::vector<PoseChangeCorrespondenc
     return fail(why, std::string("solvePnPRansac failed: ") + e.what());
   }
   if (!solved || rvec.empty() || tvec.empty()) return fail(why, "solvePnPRansac found no pose");
-  cv::Mat Rcv;
-  cv::Rodrigues(rvec, Rcv);
-  Mat3 R;
-  Vec3 t;
-  cv::cv2eigen(Rcv, R);
-  cv::cv2eigen(tvec, t);
-  if (!R.allFinite() || !t.allFinite()) return fail(why, "solvePnPRansac returned a non-finite pose");
+  const auto pose = pose_from_rodrigues(rvec, tvec);
+  if (!pose) return fail(why, "solvePnPRansac returned a non-finite pose");
+  const auto& [R, t] = *pose;
   const std::vector<int> din = depth_inliers(c, with_depth, R, t, o);
   if (static_cast<int>(din.size()) < min_depth)
     return fail(why, "too few PnP inliers: " + std::to_string(din.size()) + " < " + std::to_string(min_depth));

@@ -17,6 +17,7 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "navaid/core/errors.hpp"
+#include "opencv_pose.hpp"
 
 namespace navaid::estimation {
 namespace {
@@ -297,17 +298,12 @@ class Solver {
       *why = std::to_string(inliers.size()) + " inliers of " + std::to_string(P.size()) + " points";
       return false;
     }
-    cv::Mat R;
-    cv::Rodrigues(rvec, R);
-    Mat3 Re;
-    Vec3 te;
-    cv::cv2eigen(R, Re);
-    cv::cv2eigen(tvec, te);
-    if (!Re.allFinite() || !te.allFinite()) {
+    const auto pose = pose_from_rodrigues(rvec, tvec);
+    if (!pose) {
       *why = "non-finite pose";
       return false;
     }
-    poses_[k] = SE3(Re, te).inverse();
+    poses_[k] = SE3(pose->first, pose->second).inverse();
     return true;
   }
 

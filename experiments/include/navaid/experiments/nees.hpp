@@ -68,4 +68,9 @@ struct NeesEvaluation {
 NeesEvaluation evaluate_nees(const std::vector<PoseWithCovariance>& estimates, const std::vector<io::StampedPose>& truth,
                              double confidence = 0.95, Duration tolerance = kDefaultAssociationTolerance);
 
+/// NEES of estimates paired with their true poses (same length), taken at times t, summarized with
+/// the 3-dof chi-square bounds at `confidence`.
+NeesEvaluation nees_of_pairs(const std::vector<PoseWithCovariance>& estimates, const std::vector<SE3>& truth,
+                             std::vector<Timestamp> t, double confidence);
+
 }  // namespace navaid::experiments
