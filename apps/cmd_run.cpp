@@ -227,6 +227,16 @@ void run(const RunArgs& a) {
     j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},
                                    {"q_wxyz", {T.q.w(), T.q.x(), T.q.y(), T.q.z()}}};
   }
+  if (est_config.residual_diagnostics) {
+    nlohmann::ordered_json res = nlohmann::ordered_json::object();
+    for (const auto& [type, r] : st.residuals)
+      res[type] = {{"factors", r.factors},
+                   {"rows", r.rows},
+                   {"chi2_per_row", r.rows ? r.squared_sum / static_cast<double>(r.rows) : 0.0},
+                   {"fraction_beyond_3_sigma_rms",
+                    r.factors ? static_cast<double>(r.beyond_3_sigma_rms) / static_cast<double>(r.factors) : 0.0}};
+    j["residuals"] = res;
+  }
   std::map<std::string, std::size_t> modes;
   for (const auto& e : estimates) ++modes[std::string(to_string(e.mode))];
   nlohmann::ordered_json fractions = nlohmann::ordered_json::object();

@@ -84,10 +84,23 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.pixel_sigma_px = c.get_double("estimator.features.pixel_sigma", e.pixel_sigma_px, {1e-3, 100});
   e.min_visual_features =
       static_cast<int>(c.get_int("estimator.features.min_visual", e.min_visual_features, 0, 10000));
-  e.reuse_marginalized_tracks =
-      c.get_bool("estimator.features.reuse_marginalized_tracks", e.reuse_marginalized_tracks);
+  static const char* const bearing_names[] = {"fixed", "estimated"};
+  static const AnchorBearing bearings[] = {AnchorBearing::kFixed, AnchorBearing::kEstimated};
+  e.anchor_bearing = parse_enum(c.get_string("estimator.features.anchor_bearing", to_string(e.anchor_bearing),
+                                             {"fixed", "estimated"}),
+                                bearing_names, bearings);
+  static const char* const leaving_names[] = {"reuse", "restart", "reanchor"};
+  static const LeavingAnchorPolicy leaving[] = {LeavingAnchorPolicy::kReuse, LeavingAnchorPolicy::kRestart,
+                                                LeavingAnchorPolicy::kReanchor};
+  e.leaving_anchor = parse_enum(c.get_string("estimator.features.leaving_anchor", to_string(e.leaving_anchor),
+                                             {"reuse", "restart", "reanchor"}),
+                                leaving_names, leaving);
   e.disparity_sigma_px = c.get_double("estimator.depth.disparity_sigma", e.disparity_sigma_px, {0, 100});
   e.depth_baseline_m = c.get_double("estimator.depth.baseline", e.depth_baseline_m, {0, 10});
+  static const char* const covariance_names[] = {"full", "paper"};
+  static const Depth3dCovariance covariances[] = {Depth3dCovariance::kFull, Depth3dCovariance::kPaper};
+  e.depth_3d_covariance = parse_enum(c.get_string("estimator.depth.point_covariance", "full", {"full", "paper"}),
+                                     covariance_names, covariances);
 
   e.keyframe_parallax_px = c.get_double("estimator.keyframe.parallax", e.keyframe_parallax_px, {0, 1000});
   e.keyframe_min_tracked =
@@ -111,6 +124,7 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.max_solver_time_s = c.get_double("estimator.solver.max_time", e.max_solver_time_s, {0, 60});
 
   e.marginalization = c.get_bool("estimator.marginalization", e.marginalization);
+  e.residual_diagnostics = c.get_bool("estimator.diagnostics.residuals", e.residual_diagnostics);
   static const char* const cov_names[] = {"schur", "ceres", "off"};
   static const CovarianceMethod covs[] = {CovarianceMethod::kSchur, CovarianceMethod::kCeres, CovarianceMethod::kOff};
   e.covariance_method =
@@ -175,5 +189,15 @@ std::string to_string(InitializationMethod method) {
 std::string to_string(GpsMode mode) { return mode == GpsMode::kJoint ? "joint" : "decoupled"; }
 
 std::string to_string(FarFeaturePolicy policy) { return policy == FarFeaturePolicy::kFree ? "free" : "fixed"; }
+std::string to_string(LeavingAnchorPolicy policy) {
+  switch (policy) {
+    case LeavingAnchorPolicy::kReuse: return "reuse";
+    case LeavingAnchorPolicy::kRestart: return "restart";
+    case LeavingAnchorPolicy::kReanchor: return "reanchor";
+  }
+  return "reuse";
+}
+std::string to_string(AnchorBearing bearing) { return bearing == AnchorBearing::kFixed ? "fixed" : "estimated"; }
+std::string to_string(Depth3dCovariance model) { return model == Depth3dCovariance::kFull ? "full" : "paper"; }
 
 }  // namespace navaid::estimation

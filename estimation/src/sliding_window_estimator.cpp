@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -21,6 +22,7 @@
 #include "navaid/estimation/factors/gps_position_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
+#include "navaid/estimation/factors/landmark_factors.hpp"
 #include "navaid/estimation/factors/magnetometer_yaw_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
@@ -311,12 +313,14 @@ std::optional<double> SlidingWindowEstimator::Impl::triangulate(const FeatureTra
 void SlidingWindowEstimator::Impl::initialize_tracks() {
   for (auto& [id, track] : tracks.tracks()) {
     if (track.initialized) continue;
+    track.landmark[0] = track.anchor().m.x();
+    track.landmark[1] = track.anchor().m.y();
     if (track.anchor().depth_m) {
-      track.inverse_depth = 1.0 / *track.anchor().depth_m;
+      track.inverse_depth() = 1.0 / *track.anchor().depth_m;
       track.initialized = true;
     } else if (track.observations.size() >= 2) {
       if (const auto lambda = triangulate(track)) {
-        track.inverse_depth = *lambda;
+        track.inverse_depth() = *lambda;
         track.initialized = true;
       }
     }
@@ -392,6 +396,9 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
     const SE3 T_W_Ca = T_W_C(*anchor);
     const bool near = a.depth_m && *a.depth_m <= cfg.far_threshold_m && sigma_lambda > 0;
     const bool fixed = a.depth_m && !near && cfg.far_policy == FarFeaturePolicy::kFixed;
+    // A landmark held constant keeps its bearing too (the plain factors, VINS-RGBD style).
+    const bool estimated = bearing_estimated() && !fixed;
+    double* landmark = estimated ? track.landmark : &track.inverse_depth();
     std::vector<Residual> r;
     bool depth_factor = false;
     bool sees_newest = false;
@@ -403,34 +410,66 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
       if (!target) continue;
       // A point behind the target camera at the current estimate cannot be evaluated (the factor
       // returns false and Ceres aborts): leave that observation out of this solve.
-      const Vec3 p_ct = T_W_C(*target).inverse() * (T_W_Ca * (Vec3(a.m.x(), a.m.y(), 1.0) / track.inverse_depth));
+      const Eigen::Vector2d m_a = track.bearing();
+      const Vec3 p_ct = T_W_C(*target).inverse() * (T_W_Ca * (Vec3(m_a.x(), m_a.y(), 1.0) / track.inverse_depth()));
       if (!(p_ct.z() > kMinFeatureDepth)) continue;
       sees_newest |= o.frame_id == newest_id;
-      std::vector<double*> blocks{anchor->pose, target->pose, extrinsic, &track.inverse_depth};
+      std::vector<double*> blocks{anchor->pose, target->pose, extrinsic, landmark};
       const TimedObservation ta{a.m, a.velocity, a.td0_s}, to{o.m, o.velocity, o.td0_s};
       if (cfg.estimate_time_offset) blocks.push_back(time_offset);
+      const bool td = cfg.estimate_time_offset;
+      if (estimated) {
+        if (near && cfg.use_depth_3d && o.depth_m && *o.depth_m <= cfg.far_threshold_m) {
+          const double sl = sigma_lambda, sp = cfg.pixel_sigma_px;
+          const auto model = cfg.depth_3d_covariance;
+          r.push_back({td ? std::shared_ptr<ceres::CostFunction>(std::make_shared<LandmarkDepth3dTdFactor>(
+                                to, *o.depth_m, o.depth_rate_mps, focal_px, sl, sp, model))
+                          : std::make_shared<LandmarkDepth3dFactor>(o.m, *o.depth_m, focal_px, sl, sp, model),
+                       loss, blocks});
+          depth_factor = true;
+        } else if (cfg.use_reprojection) {
+          r.push_back({td ? std::shared_ptr<ceres::CostFunction>(
+                                std::make_shared<LandmarkReprojectionTdFactor>(to, focal_px, cfg.pixel_sigma_px))
+                          : std::make_shared<LandmarkReprojectionFactor>(o.m, focal_px, cfg.pixel_sigma_px),
+                       loss, blocks});
+        }
+        continue;
+      }
       if (near && cfg.use_depth_3d && o.depth_m && *o.depth_m <= cfg.far_threshold_m) {
         if (cfg.estimate_time_offset)
           r.push_back({std::make_shared<Depth3dTdFactor>(ta, to, *o.depth_m, o.depth_rate_mps, focal_px, sigma_lambda,
-                                                         cfg.pixel_sigma_px),
+                                                         cfg.pixel_sigma_px, cfg.depth_3d_covariance),
                        loss, blocks});
         else
-          r.push_back({std::make_shared<Depth3dFactor>(a.m, o.m, *o.depth_m, focal_px, sigma_lambda, cfg.pixel_sigma_px),
+          r.push_back({std::make_shared<Depth3dFactor>(m_a, o.m, *o.depth_m, focal_px, sigma_lambda, cfg.pixel_sigma_px,
+                                                       cfg.depth_3d_covariance),
                        loss, blocks});
         depth_factor = true;
       } else if (cfg.use_reprojection) {
         if (cfg.estimate_time_offset)
           r.push_back({std::make_shared<ReprojectionTdFactor>(ta, to, focal_px, cfg.pixel_sigma_px), loss, blocks});
         else
-          r.push_back({std::make_shared<ReprojectionFactor>(a.m, o.m, focal_px, cfg.pixel_sigma_px), loss, blocks});
+          r.push_back({std::make_shared<ReprojectionFactor>(m_a, o.m, focal_px, cfg.pixel_sigma_px), loss, blocks});
       }
     }
     if (r.empty()) continue;
-    if (near && cfg.use_inverse_depth) {
-      r.push_back({std::make_shared<InverseDepthFactor>(*a.depth_m, sigma_lambda), nullptr, {&track.inverse_depth}});
+    if (estimated && cfg.estimate_time_offset) {
+      const TimedObservation ta{a.m, a.velocity, a.td0_s};
+      r.push_back({std::make_shared<AnchorBearingTdFactor>(ta, focal_px, cfg.pixel_sigma_px), loss,
+                   {track.landmark, time_offset}});
+    } else if (estimated) {
+      r.push_back({std::make_shared<AnchorBearingFactor>(a.m, focal_px, cfg.pixel_sigma_px), loss, {track.landmark}});
+    }
+    if (estimated) {
+      if (near && cfg.use_inverse_depth) {
+        r.push_back({std::make_shared<AnchorInverseDepthFactor>(*a.depth_m, sigma_lambda), nullptr, {track.landmark}});
+        depth_factor = true;
+      }
+    } else if (near && cfg.use_inverse_depth) {
+      r.push_back({std::make_shared<InverseDepthFactor>(*a.depth_m, sigma_lambda), nullptr, {&track.inverse_depth()}});
       depth_factor = true;
     }
-    if (fixed && fixed_inverse_depths) fixed_inverse_depths->push_back(&track.inverse_depth);
+    if (fixed && fixed_inverse_depths) fixed_inverse_depths->push_back(&track.inverse_depth());
     ++c.all_features;
     if (sees_newest || a.frame_id == newest_id) {
       ++c.features;
@@ -479,6 +518,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   ++stats.solves;
+  if (cfg.residual_diagnostics) accumulate_residual_statistics(residuals);
   stats.features_in_last_solve = count.all_features;
   stats.depth_features_in_last_solve = count.depth_features;
   // New frames are placed in the IMU clock with the current offset estimate.
@@ -491,7 +531,7 @@ void SlidingWindowEstimator::Impl::remove_failed_tracks() {
   std::vector<std::uint64_t> failed;
   for (const auto& [id, track] : tracks.tracks()) {
     if (!track.initialized) continue;
-    const double z = 1.0 / track.inverse_depth;
+    const double z = 1.0 / track.inverse_depth();
     if (!std::isfinite(z) || z < kMinFeatureDepth || z > kMaxFeatureDepth) failed.push_back(id);
   }
   for (auto id : failed) tracks.erase(id);
@@ -504,10 +544,16 @@ void SlidingWindowEstimator::Impl::reanchor_tracks_of(const WindowState& leaving
     if (track.observations.size() < 2) continue;  // disappears with the frame
     const WindowState* next = state(track.observations[1].frame_id);
     if (track.initialized && next) {
-      const Vec3 m(track.anchor().m.x(), track.anchor().m.y(), 1.0);
-      const Vec3 p_new = T_W_C(*next).inverse() * (T_W_Cold * (m / track.inverse_depth));
+      const Vec3 m(track.landmark[0], track.landmark[1], 1.0);
+      const Vec3 p_new = T_W_C(*next).inverse() * (T_W_Cold * (m / track.inverse_depth()));
       track.initialized = p_new.z() > kMinFeatureDepth && p_new.z() < kMaxFeatureDepth;
-      if (track.initialized) track.inverse_depth = 1.0 / p_new.z();
+      if (!track.initialized) continue;
+      // A fixed bearing is the new anchor's measurement; an estimated one carries the estimate over.
+      const Eigen::Vector2d bearing =
+          bearing_estimated() ? Eigen::Vector2d(p_new.head<2>() / p_new.z()) : track.observations[1].m;
+      track.landmark[0] = bearing.x();
+      track.landmark[1] = bearing.y();
+      track.inverse_depth() = 1.0 / p_new.z();
     } else {
       track.initialized = false;
     }
@@ -517,11 +563,22 @@ void SlidingWindowEstimator::Impl::reanchor_tracks_of(const WindowState& leaving
 void SlidingWindowEstimator::Impl::slide_out_oldest() {
   WindowState& oldest = *window.front();
   bool marginalized = false;
+  std::vector<std::uint64_t> marginalized_tracks;  // tracks whose landmark went into the prior
   if (cfg.marginalization) {
     // Blocks leaving: the oldest pose and speed-bias, the inverse depths anchored there.
     std::set<const double*> leaving{oldest.pose, oldest.speed_bias};
     if (oldest.has_gps_bias) leaving.insert(oldest.gps_bias);
-    for (auto id : tracks.anchored_at(oldest.id)) leaving.insert(&tracks.tracks().at(id).inverse_depth);
+    // reanchor: the factors of the tracks anchored here that the newest frame still sees stay out
+    // of the prior (re-anchored below); the tracks that ended are marginalized whole.
+    std::set<const double*> left_out;
+    const std::uint64_t newest_id = window.back()->id;
+    for (auto id : tracks.anchored_at(oldest.id)) {
+      FeatureTrack& track = tracks.tracks().at(id);
+      const bool alive = track.observations.back().frame_id == newest_id;
+      const bool keep = cfg.leaving_anchor == LeavingAnchorPolicy::kReanchor && alive;
+      (keep ? left_out : leaving).insert(landmark_block(track));
+      if (!keep) marginalized_tracks.push_back(id);
+    }
     std::vector<double*> fixed;
     const std::vector<Residual> residuals = build_residuals(nullptr, &fixed);
     Marginalizer marg;
@@ -536,6 +593,8 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
       for (auto& s : window) marg.set_constant(s->speed_bias);
     if (!cfg.use_imu) leaving.erase(oldest.speed_bias);
     for (const auto& r : residuals) {
+      if (std::any_of(r.blocks.begin(), r.blocks.end(), [&](const double* b) { return left_out.count(b) > 0; }))
+        continue;
       MarginalizationTerm term;
       for (std::size_t i = 0; i < r.blocks.size(); ++i)
         if (leaving.count(r.blocks[i])) term.marginalize.push_back(static_cast<int>(i));
@@ -557,9 +616,13 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
     }
     if (state_prior_id == oldest.id) state_prior.reset();  // consumed by the new prior
   }
-  if (marginalized && !cfg.reuse_marginalized_tracks) {
-    // Ablation: every observation of these tracks is now in the prior; restart them at their
-    // next observation instead of re-anchoring (which uses those observations again).
+  if (marginalized && cfg.leaving_anchor == LeavingAnchorPolicy::kReanchor) {
+    // The ended tracks' observations are all in the prior now.
+    for (auto id : marginalized_tracks) tracks.erase(id);
+    reanchor_tracks_of(oldest);
+  } else if (marginalized && cfg.leaving_anchor == LeavingAnchorPolicy::kRestart) {
+    // Every observation of these tracks is now in the prior; restart them at their next new
+    // observation instead of re-anchoring (which uses those observations again).
     for (auto id : tracks.anchored_at(oldest.id)) tracks.erase(id);
   } else {
     reanchor_tracks_of(oldest);

@@ -134,7 +134,7 @@ TEST(Depth3dFactor, ZeroAtTruthAndPaperResidualOffIt) {
   const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
-    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda);
+    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda, 1.5, Depth3dCovariance::kPaper);
     Vec3 r;
     ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
     EXPECT_LT(r.norm(), 1e-8);
@@ -149,15 +149,73 @@ TEST(Depth3dFactor, ZeroAtTruthAndPaperResidualOffIt) {
   }
 }
 
+TEST(Depth3dFactor, FullCovarianceResidualOffTruth) {
+  std::mt19937_64 rng(23);
+  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
+  for (int trial = 0; trial < 20; ++trial) {
+    TwoViews v = two_views(rng);
+    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda);  // kFull by default
+    perturb(v, rng);
+    Vec3 r;
+    ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
+    // The error of (x, y, 1/Z) that maps to the point error: x = X / Z^ ... to first order
+    // [dX / Z + x Z d(1/Z), dY / Z + y Z d(1/Z), d(1/Z)], whitened by sigma / f and sigma_lambda.
+    const Vec3 P = point_in_target(v);
+    const double Z = v.z_target, x = v.m_target.x(), y = v.m_target.y(), sn = 1.5 / kFocal;
+    const Vec3 d(x * Z - P.x(), y * Z - P.y(), 1.0 / Z - 1.0 / P.z());
+    const Vec3 expected((d.x() / Z + x * Z * d.z()) / sn, (d.y() / Z + y * Z * d.z()) / sn, d.z() / sigma_lambda);
+    EXPECT_LT((r - expected).norm(), 1e-9 * (1.0 + expected.norm()));
+  }
+}
+
+// Measurements drawn as the simulator draws them (pixel noise on u, v; white disparity noise, so
+// Z = f b / (f b / Z_true + sigma_d n)) at a fixed true point near the image border, 3 m away:
+// the full model whitens the point error to unit covariance, the paper's leaves the X variance
+// several times too large and the X / (1/Z) terms correlated.
+TEST(Depth3dFactor, FullCovarianceWhitensSimulatedDepthNoise) {
+  const double f_px = 460.0, b = 0.065, sigma_d = 0.1, sigma_px = 1.0;
+  const double sigma_lambda = inverse_depth_sigma(sigma_d, f_px, b);
+  const Vec3 P_true(0.6 * 3.0, -0.4 * 3.0, 3.0);
+  std::mt19937_64 rng(24);
+  std::normal_distribution<double> n(0.0, 1.0);
+  // The prediction is the true point: the anchor is the target, lambda the true inverse depth.
+  double identity[kPoseSize], extrinsic[kPoseSize], lambda[1] = {1.0 / P_true.z()};
+  pose_to_block(SE3(), identity);
+  pose_to_block(SE3(), extrinsic);
+  const double* p[] = {identity, identity, extrinsic, lambda};
+  const Eigen::Vector2d m_true = P_true.head<2>() / P_true.z();
+  for (const auto model : {Depth3dCovariance::kFull, Depth3dCovariance::kPaper}) {
+    Mat3 second_moment = Mat3::Zero();
+    const int draws = 20000;
+    for (int i = 0; i < draws; ++i) {
+      const Eigen::Vector2d m = m_true + sigma_px / f_px * Eigen::Vector2d(n(rng), n(rng));
+      const double Z = f_px * b / (f_px * b / P_true.z() + sigma_d * n(rng));
+      const Depth3dFactor factor(m_true, m, Z, f_px, sigma_lambda, sigma_px, model);
+      Vec3 r;
+      ASSERT_TRUE(factor.Evaluate(p, r.data(), nullptr));
+      second_moment += r * r.transpose() / draws;
+    }
+    if (model == Depth3dCovariance::kFull) {
+      EXPECT_LT((second_moment - Mat3::Identity()).cwiseAbs().maxCoeff(), 0.06) << second_moment;
+    } else {
+      EXPECT_GT(second_moment(0, 0), 4.0) << second_moment;
+      EXPECT_GT(std::abs(second_moment(0, 2)), 0.5) << second_moment;
+    }
+  }
+}
+
 TEST(Depth3dFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
   std::mt19937_64 rng(22);
   const PoseManifold pm;
   const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
-    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda);
+    const TwoViews measured = v;
     perturb(v, rng);
-    EXPECT_TRUE(jacobians_match(f, blocks(v), {&pm, &pm, &pm, nullptr})) << "trial " << trial;
+    for (const auto model : {Depth3dCovariance::kFull, Depth3dCovariance::kPaper}) {
+      const Depth3dFactor f(measured.m_anchor, measured.m_target, measured.z_target, kFocal, sigma_lambda, 1.5, model);
+      EXPECT_TRUE(jacobians_match(f, blocks(v), {&pm, &pm, &pm, nullptr})) << "trial " << trial;
+    }
   }
 }
 

@@ -19,7 +19,7 @@ Vec3 measured_point(const Eigen::Vector2d& m_target, double depth_m) {
 }  // namespace
 
 Depth3dFactor::Depth3dFactor(const Eigen::Vector2d& m_anchor, const Eigen::Vector2d& m_target, double depth_j_m,
-                             double focal_px, double sigma_lambda, double sigma_px)
+                             double focal_px, double sigma_lambda, double sigma_px, Depth3dCovariance model)
     : m_anchor_(m_anchor), m_target_(m_target), depth_m_(depth_j_m) {
   if (!(depth_j_m > 0.0) || !std::isfinite(depth_j_m)) {
     throw Error("Depth3dFactor: measured depth must be finite and > 0, got " + std::to_string(depth_j_m));
@@ -31,8 +31,12 @@ Depth3dFactor::Depth3dFactor(const Eigen::Vector2d& m_anchor, const Eigen::Vecto
   require(sigma_lambda, "sigma_lambda");
   require(sigma_px, "sigma_px");
   measurement_ = measured_point(m_target, depth_j_m);
-  const double sigma_xy = depth_j_m * sigma_px / focal_px;
-  sqrt_information_ << 1.0 / sigma_xy, 1.0 / sigma_xy, 1.0 / sigma_lambda;
+  const double sigma_n = sigma_px / focal_px;  // on the normalized plane
+  const double Z = depth_j_m;
+  const bool full = model == Depth3dCovariance::kFull;
+  sqrt_information_ << 1.0 / (Z * sigma_n), 0.0, full ? m_target.x() * Z / sigma_n : 0.0,  //
+      0.0, 1.0 / (Z * sigma_n), full ? m_target.y() * Z / sigma_n : 0.0,                   //
+      0.0, 0.0, 1.0 / sigma_lambda;
 }
 
 bool Depth3dFactor::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
@@ -49,18 +53,18 @@ bool Depth3dFactor::evaluate_at(double const* const* parameters, const Eigen::Ve
   const Vec3& P = pt.P_ct;
   if (!(P.z() > kMinDepth)) return false;
   const Vec3 predicted(P.x(), P.y(), 1.0 / P.z());
-  Eigen::Map<Vec3>{residuals} = sqrt_information_.cwiseProduct(measured_point(m_target, depth_j_m) - predicted);
+  Eigen::Map<Vec3>{residuals} = sqrt_information_ * (measured_point(m_target, depth_j_m) - predicted);
   if (d_m_target) {  // X = x_j Z, Y = y_j Z
-    d_m_target->setZero();
-    (*d_m_target)(0, 0) = sqrt_information_.x() * depth_j_m;
-    (*d_m_target)(1, 1) = sqrt_information_.y() * depth_j_m;
+    Eigen::Matrix<double, 3, 2> d_measured = Eigen::Matrix<double, 3, 2>::Zero();
+    d_measured(0, 0) = depth_j_m;
+    d_measured(1, 1) = depth_j_m;
+    *d_m_target = sqrt_information_ * d_measured;
   }
-  if (d_depth) *d_depth = sqrt_information_.cwiseProduct(Vec3(m_target.x(), m_target.y(), -1.0 / (depth_j_m * depth_j_m)));
+  if (d_depth) *d_depth = sqrt_information_ * Vec3(m_target.x(), m_target.y(), -1.0 / (depth_j_m * depth_j_m));
   if (!want) return true;
 
   // d r / d P = -S d[X, Y, 1/Z] / dP
-  const Mat3 d_point = Vec3(-sqrt_information_.x(), -sqrt_information_.y(),
-                            sqrt_information_.z() / (P.z() * P.z())).asDiagonal();
+  const Mat3 d_point = sqrt_information_ * Vec3(-1.0, -1.0, 1.0 / (P.z() * P.z())).asDiagonal();
   if (d_m_anchor) *d_m_anchor = d_point * pt.d_m_anchor;
   if (!jacobians) return true;
   if (jacobians[0]) write_pose_jacobian<3>(d_point * pt.d_anchor, parameters[0], jacobians[0]);

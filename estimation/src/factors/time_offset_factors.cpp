@@ -43,8 +43,9 @@ bool ReprojectionTdFactor::Evaluate(double const* const* parameters, double* res
 }
 
 Depth3dTdFactor::Depth3dTdFactor(const TimedObservation& anchor, const TimedObservation& target, double depth_j_m,
-                                 double depth_rate_mps, double focal_px, double sigma_lambda, double sigma_px)
-    : plain_(anchor.m, target.m, depth_j_m, focal_px, sigma_lambda, sigma_px),
+                                 double depth_rate_mps, double focal_px, double sigma_lambda, double sigma_px,
+                                 Depth3dCovariance model)
+    : plain_(anchor.m, target.m, depth_j_m, focal_px, sigma_lambda, sigma_px, model),
       anchor_(checked(anchor, "Depth3dTdFactor", "anchor")),
       target_(checked(target, "Depth3dTdFactor", "target")),
       depth_m_(depth_j_m),

@@ -59,12 +59,14 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
         state_cols += kSpeedBiasSize;
       }
     }
-    // Inverse depths in track order: Ceres lists its blocks by address, which would make the sums
-    // below (and so the covariance's last bits) depend on where the allocator put the tracks.
+    // Landmarks (inverse depths, or [bearing, inverse depth]) in track order: Ceres lists its
+    // blocks by address, which would make the sums below (and so the covariance's last bits)
+    // depend on where the allocator put the tracks.
+    const int landmark_size = landmark_block_size();
     for (auto& [id, track] : tracks.tracks()) {
-      double* lambda = &track.inverse_depth;
-      if (problem.HasParameterBlock(lambda) && !problem.IsParameterBlockConstant(lambda))
-        eo.parameter_blocks.push_back(lambda);
+      double* landmark = landmark_block(track);
+      if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark))
+        eo.parameter_blocks.push_back(landmark);
     }
     ceres::CRSMatrix crs;
     if (!problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
@@ -75,13 +77,17 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     const int nl = crs.num_cols - state_cols;
     Eigen::MatrixXd S = H.topLeftCorner(state_cols, state_cols);
     if (nl > 0) {
-      Eigen::VectorXd inv_l(nl);
-      for (int k = 0; k < nl; ++k) {
-        const double h = H(state_cols + k, state_cols + k);
-        inv_l(k) = h > 1e-12 ? 1.0 / h : 0.0;  // an unobserved depth carries no information
-      }
+      // The landmarks' block of H is block diagonal (one landmark per block): invert block by block.
+      Eigen::MatrixXd H_sl_inv = Eigen::MatrixXd::Zero(state_cols, nl);
       const Eigen::MatrixXd H_sl = H.topRightCorner(state_cols, nl);
-      S.noalias() -= H_sl * inv_l.asDiagonal() * H_sl.transpose();
+      for (int k = 0; k < nl; k += landmark_size) {
+        const Eigen::MatrixXd H_ll = H.block(state_cols + k, state_cols + k, landmark_size, landmark_size);
+        const Eigen::LDLT<Eigen::MatrixXd> ldlt(H_ll);
+        // An unobserved landmark carries no information.
+        if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12)) continue;
+        H_sl_inv.middleCols(k, landmark_size) = ldlt.solve(H_sl.middleCols(k, landmark_size).transpose()).transpose();
+      }
+      S.noalias() -= H_sl_inv * H_sl.transpose();
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
     if (llt.info() != Eigen::Success) return std::nullopt;

@@ -190,11 +190,19 @@ struct SlidingWindowEstimator::Impl {
   std::optional<double> triangulate(const FeatureTrack& track) const;
   const WindowState* state(std::uint64_t id) const;
   SE3 T_W_C(const WindowState& s) const { return s.T_W_B() * pose_from_block(extrinsic); }
+  /// The track's parameter block: its whole landmark when the anchor bearing is estimated, else
+  /// its inverse depth alone.
+  bool bearing_estimated() const { return cfg.anchor_bearing == AnchorBearing::kEstimated; }
+  double* landmark_block(FeatureTrack& track) const {
+    return bearing_estimated() ? track.landmark : &track.inverse_depth();
+  }
+  int landmark_block_size() const { return bearing_estimated() ? 3 : 1; }
 
   std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* fixed_inverse_depths);
   /// Solves the window; with `covariance`, also the newest state's covariance (nullopt on failure).
   VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
   std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem);
+  void accumulate_residual_statistics(const std::vector<Residual>& residuals);
   void remove_failed_tracks();
   StateEstimate estimate_of(const WindowState& s, Timestamp frame_t, EstimatorMode mode, const Mat15& cov) const;
   void slide_out_oldest();

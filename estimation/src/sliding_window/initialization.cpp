@@ -152,7 +152,9 @@ bool SlidingWindowEstimator::Impl::visual_initialization() {
     const Vec3 P_W = a.T_W_l * (a.scale * p->second);
     const double z = (T_W_C(*anchor).inverse() * P_W).z();
     if (z > kMinFeatureDepth && z < kMaxFeatureDepth) {
-      track.inverse_depth = 1.0 / z;
+      track.landmark[0] = track.anchor().m.x();
+      track.landmark[1] = track.anchor().m.y();
+      track.inverse_depth() = 1.0 / z;
       track.initialized = true;
     }
   }

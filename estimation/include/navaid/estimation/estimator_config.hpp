@@ -7,6 +7,7 @@
 
 #include "navaid/core/config.hpp"
 #include "navaid/core/geometry.hpp"
+#include "navaid/estimation/factors/depth_3d_covariance.hpp"
 
 namespace navaid::estimation {
 
@@ -14,6 +15,16 @@ enum class LossKind { kCauchy, kHuber, kNone };
 enum class LinearSolverKind { kDenseSchur, kSparseSchur, kSparseNormalCholesky };
 /// What happens to the inverse depth of a far feature (anchor depth > far_threshold_m).
 enum class FarFeaturePolicy { kFree, kFixed };
+/// A track whose anchor keyframe leaves the window: its factors go into the marginalization prior
+/// and it is re-anchored at its next observation, whose factors then count a second time
+/// (VINS-Mono, "reuse"); its factors go into the prior and it is restarted at its next new
+/// observation ("restart"); or its factors stay out of the prior and it is re-anchored, so every
+/// observation counts once and the leaving anchor's bearing is given up ("reanchor").
+enum class LeavingAnchorPolicy { kReuse, kRestart, kReanchor };
+/// The bearing of a feature in its anchor keyframe: the anchor's measurement, held exact (VINS-Mono,
+/// DSO), or estimated with the inverse depth, the anchor observation then being a factor
+/// (factors/landmark_factors.hpp says why).
+enum class AnchorBearing { kFixed, kEstimated };
 /// How the newest state's covariance is computed: Schur complement of the window's information
 /// (fast), ceres::Covariance (SPARSE_QR; reference, slower), or not at all.
 enum class CovarianceMethod { kSchur, kCeres, kOff };
@@ -44,13 +55,14 @@ struct EstimatorConfig {
   double pixel_sigma_px = 1.5;
   /// Below this many features with usable visual factors the frame is IMU-only.
   int min_visual_features = 8;
-  /// After marginalizing a track's anchor keyframe, keep its remaining observations re-anchored
-  /// (VINS-Mono; they also live on in the prior) instead of restarting the track. Restarting
-  /// avoids that reuse but measured less accurate and no more consistent (docs/estimator.md).
-  bool reuse_marginalized_tracks = true;
+  /// What happens to a track whose anchor keyframe is marginalized (docs/estimator.md, "Features").
+  LeavingAnchorPolicy leaving_anchor = LeavingAnchorPolicy::kReanchor;
+  AnchorBearing anchor_bearing = AnchorBearing::kEstimated;
   /// Depth noise: 0 = the calibration's depth_disparity_sigma_px / depth_baseline_m.
   double disparity_sigma_px = 0;
   double depth_baseline_m = 0;
+  /// Covariance of the depth-augmented 3D factor's measured point (depth_3d_factor.hpp).
+  Depth3dCovariance depth_3d_covariance = Depth3dCovariance::kFull;
 
   // Keyframes.
   double keyframe_parallax_px = 10.0;  ///< mean parallax to the last keyframe
@@ -67,6 +79,9 @@ struct EstimatorConfig {
   double max_solver_time_s = 0;  ///< 0: no limit (a limit makes results depend on the machine)
 
   bool marginalization = true;
+  /// Accumulate whitened residual statistics per factor type after every solve (costs one more
+  /// evaluation of the window per frame).
+  bool residual_diagnostics = false;
   CovarianceMethod covariance_method = CovarianceMethod::kSchur;
 
   // Initialization.
@@ -120,6 +135,9 @@ Vec3 calibrated_mag_field(const EstimatorConfig& config, const Vec3& raw);
 std::string to_string(LossKind kind);
 std::string to_string(LinearSolverKind kind);
 std::string to_string(FarFeaturePolicy policy);
+std::string to_string(Depth3dCovariance model);
+std::string to_string(LeavingAnchorPolicy policy);
+std::string to_string(AnchorBearing bearing);
 std::string to_string(GpsMode mode);
 std::string to_string(InitializationMethod method);
 

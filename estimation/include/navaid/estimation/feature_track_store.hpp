@@ -26,10 +26,16 @@ struct TrackObservation {
 struct FeatureTrack {
   std::uint64_t id = 0;
   std::vector<TrackObservation> observations;  ///< increasing frame_id; front() is the anchor
-  double inverse_depth = 0;                    ///< lambda = 1 / z in the anchor camera [1/m]
-  bool initialized = false;                    ///< inverse_depth holds an estimate
+  /// [x_a, y_a, lambda]: the bearing on the anchor camera's normalized plane and the inverse depth
+  /// lambda = 1 / z in the anchor camera [1/m]. The bearing is the anchor's measurement, or an
+  /// estimate of it (estimator.features.anchor_bearing = estimated): one contiguous parameter block.
+  double landmark[3] = {0, 0, 0};
+  bool initialized = false;  ///< landmark holds an estimate
 
   const TrackObservation& anchor() const { return observations.front(); }
+  double& inverse_depth() { return landmark[2]; }
+  double inverse_depth() const { return landmark[2]; }
+  Eigen::Vector2d bearing() const { return Eigen::Vector2d(landmark[0], landmark[1]); }
 };
 
 class FeatureTrackStore {

@@ -34,6 +34,7 @@
 // a delay of one IMU sample. Single-threaded and deterministic: the same events and configuration
 // give the same estimates bit for bit.
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,6 +46,16 @@
 #include "navaid/estimation/estimator_config.hpp"
 
 namespace navaid::estimation {
+
+/// Whitened residuals of one factor type after the solves (estimator.diagnostics.residuals): for a
+/// noise model that matches the data, squared_sum / rows is a little below 1 (the fit absorbs
+/// the parameters' share); far above 1 means the factor's covariance is too small.
+struct ResidualStatistics {
+  std::size_t factors = 0;   ///< residual blocks evaluated, summed over solves
+  std::size_t rows = 0;      ///< residual rows (degrees of freedom), summed over solves
+  double squared_sum = 0;    ///< sum of |r|^2 (before the robust loss)
+  std::size_t beyond_3_sigma_rms = 0;  ///< blocks with |r|^2 / rows > 9
+};
 
 struct EstimatorStatistics {
   std::size_t frames = 0;            ///< feature frames estimated (every mode)
@@ -63,6 +74,9 @@ struct EstimatorStatistics {
   std::size_t initialization_failures = 0;
   std::string last_initialization_failure;
   double initialized_at_s = -1;  ///< IMU-clock time of the initialization [s] (-1: not yet)
+  /// Per factor type ("imu", "reprojection", "depth_3d", "inverse_depth", "prior", "gps", ...),
+  /// filled only with estimator.diagnostics.residuals.
+  std::map<std::string, ResidualStatistics> residuals;
 };
 
 class SlidingWindowEstimator {

@@ -57,7 +57,8 @@ class Depth3dTdFactor final : public ceres::SizedCostFunction<3, 7, 7, 7, 1, 1> 
   /// the moved depth is not positive. Throws Error unless m, velocity, td0 and the rate are finite;
   /// Error / ConfigError as Depth3dFactor.
   Depth3dTdFactor(const TimedObservation& anchor, const TimedObservation& target, double depth_j_m,
-                  double depth_rate_mps, double focal_px, double sigma_lambda, double sigma_px = 1.5);
+                  double depth_rate_mps, double focal_px, double sigma_lambda, double sigma_px = 1.5,
+                  Depth3dCovariance model = Depth3dCovariance::kFull);
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
