@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "factor_check.hpp"
+#include "two_view_scene.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
 #include "navaid/estimation/factors/landmark_factors.hpp"
@@ -14,52 +15,14 @@ namespace navaid::estimation {
 namespace {
 
 using testing::jacobians_match;
-using testing::random_pose;
-using testing::random_rotation;
-using testing::random_vector;
 
 constexpr double kFocal = 460.0;
 constexpr double kSigmaPx = 1.0;
 
-// A feature seen from an anchor and a target keyframe, with its landmark block.
-struct Scene {
-  double anchor[kPoseSize], target[kPoseSize], extrinsic[kPoseSize];
-  double landmark[kLandmarkSize];
-  Eigen::Vector2d m_anchor, m_target;  // exact observations
-  double z_anchor = 0, z_target = 0;
-};
-
-Scene scene(std::mt19937_64& rng) {
-  for (;;) {
-    const SE3 T_W_Ba = random_pose(rng);
-    const SE3 T_B_C(random_rotation(rng), random_vector(rng, 0.1));
-    const SE3 T_Ca_Ct(random_rotation(rng, 0.3), random_vector(rng, 0.4));
-    const SE3 T_W_Bt = T_W_Ba * T_B_C * T_Ca_Ct * T_B_C.inverse();
-    std::uniform_real_distribution<double> depth(0.8, 5.0), xy(-0.5, 0.5);
-    const double z = depth(rng), x = xy(rng), y = xy(rng);
-    const Vec3 P_ct = T_Ca_Ct.inverse() * Vec3(x * z, y * z, z);
-    if (P_ct.z() < 0.5) continue;
-    Scene s;
-    pose_to_block(T_W_Ba, s.anchor);
-    pose_to_block(T_W_Bt, s.target);
-    pose_to_block(T_B_C, s.extrinsic);
-    s.landmark[0] = x, s.landmark[1] = y, s.landmark[2] = 1.0 / z;
-    s.m_anchor = Eigen::Vector2d(x, y);
-    s.m_target = P_ct.head<2>() / P_ct.z();
-    s.z_anchor = z;
-    s.z_target = P_ct.z();
-    return s;
-  }
-}
-
-void perturb(Scene& s, std::mt19937_64& rng) {
-  for (double* block : {s.anchor, s.target, s.extrinsic}) {
-    Vec6 xi;
-    xi << random_vector(rng, 0.05), random_vector(rng, 0.05);
-    pose_to_block(se3_boxplus(pose_from_block(block), xi), block);
-  }
-  s.landmark[0] += 0.01, s.landmark[1] -= 0.02, s.landmark[2] *= 1.1;
-}
+// The landmark block [x_a, y_a, lambda] of the shared two-view scene.
+using Scene = testing::TwoViews;
+Scene scene(std::mt19937_64& rng) { return testing::two_views(rng); }
+void perturb_with_bearing(Scene& s, std::mt19937_64& rng) { testing::perturb(s, rng, true); }
 
 std::vector<double*> visual_blocks(Scene& s) { return {s.anchor, s.target, s.extrinsic, s.landmark}; }
 
@@ -92,7 +55,7 @@ TEST(LandmarkFactors, EqualThePlainFactorsAtTheMeasuredBearing) {
   const double sigma_lambda = inverse_depth_sigma(0.1, kFocal, 0.065);
   for (int trial = 0; trial < 10; ++trial) {
     Scene s = scene(rng);
-    perturb(s, rng);
+    perturb_with_bearing(s, rng);
     const Eigen::Vector2d bearing(s.landmark[0], s.landmark[1]);
     const double* plain[] = {s.anchor, s.target, s.extrinsic, &s.landmark[2]};
     Eigen::Vector2d a2, b2;
@@ -121,7 +84,7 @@ TEST(LandmarkFactors, AnalyticJacobiansMatchNumericOnTheManifold) {
   for (int trial = 0; trial < 20; ++trial) {
     Scene s = scene(rng);
     const Scene measured = s;
-    perturb(s, rng);
+    perturb_with_bearing(s, rng);
     const std::vector<const ceres::Manifold*> manifolds{&pm, &pm, &pm, nullptr};
     EXPECT_TRUE(jacobians_match(LandmarkReprojectionFactor(measured.m_target, kFocal, kSigmaPx), visual_blocks(s),
                                 manifolds))
@@ -146,7 +109,7 @@ TEST(LandmarkFactors, TimeOffsetVersionsMatchAtTd0AndTheirJacobiansMatchNumeric)
   for (int trial = 0; trial < 10; ++trial) {
     Scene s = scene(rng);
     const Scene measured = s;
-    perturb(s, rng);
+    perturb_with_bearing(s, rng);
     const TimedObservation anchor{measured.m_anchor, Eigen::Vector2d(0.3, -0.2), 0.004};
     const TimedObservation target{measured.m_target, Eigen::Vector2d(-0.5, 0.1), 0.006};
     const LandmarkReprojectionTdFactor reprojection(target, kFocal, kSigmaPx);

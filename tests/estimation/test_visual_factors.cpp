@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "factor_check.hpp"
+#include "two_view_scene.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
@@ -19,56 +20,18 @@ using testing::random_pose;
 using testing::random_rotation;
 using testing::random_vector;
 
-// Two keyframes seeing one feature, built with plain SE3 algebra (independent of the factors).
-struct TwoViews {
-  double anchor[kPoseSize], target[kPoseSize], extrinsic[kPoseSize];
-  double lambda[1];
-  Eigen::Vector2d m_anchor, m_target;
-  double z_target;  // true depth in the target camera
-};
-
-TwoViews two_views(std::mt19937_64& rng) {
-  for (;;) {
-    const SE3 T_W_Ba = random_pose(rng);
-    const SE3 T_B_C(random_rotation(rng), random_vector(rng, 0.1));
-    // The target camera looks at the same scene from nearby.
-    const SE3 T_Ca_Ct(random_rotation(rng, 0.3), random_vector(rng, 0.4));
-    const SE3 T_W_Bt = T_W_Ba * T_B_C * T_Ca_Ct * T_B_C.inverse();
-    std::uniform_real_distribution<double> depth(1.0, 6.0), xy(-0.4, 0.4);
-    const double z = depth(rng);
-    const double x = xy(rng), y = xy(rng);
-    const Vec3 P_ca(x * z, y * z, z);
-    const Vec3 P_ct = T_Ca_Ct.inverse() * P_ca;
-    if (P_ct.z() < 0.5) continue;
-    TwoViews v;
-    pose_to_block(T_W_Ba, v.anchor);
-    pose_to_block(T_W_Bt, v.target);
-    pose_to_block(T_B_C, v.extrinsic);
-    v.lambda[0] = 1.0 / z;
-    v.m_anchor = Eigen::Vector2d(x, y);
-    v.m_target = P_ct.head<2>() / P_ct.z();
-    v.z_target = P_ct.z();
-    return v;
-  }
-}
+using testing::TwoViews;
+using testing::two_views;
+using testing::perturb;
 
 // The feature in the target camera for the (possibly perturbed) blocks of v.
 Vec3 point_in_target(const TwoViews& v) {
-  const Vec3 P_ca = Vec3(v.m_anchor.x(), v.m_anchor.y(), 1.0) / v.lambda[0];
+  const Vec3 P_ca = Vec3(v.m_anchor.x(), v.m_anchor.y(), 1.0) / *v.lambda();
   const SE3 T_B_C = pose_from_block(v.extrinsic);
   return (T_B_C.inverse() * pose_from_block(v.target).inverse() * pose_from_block(v.anchor) * T_B_C) * P_ca;
 }
 
-void perturb(TwoViews& v, std::mt19937_64& rng) {
-  for (double* block : {v.anchor, v.target, v.extrinsic}) {
-    Vec6 xi;
-    xi << random_vector(rng, 0.05), random_vector(rng, 0.05);
-    pose_to_block(se3_boxplus(pose_from_block(block), xi), block);
-  }
-  v.lambda[0] *= 1.1;
-}
-
-std::vector<double*> blocks(TwoViews& v) { return {v.anchor, v.target, v.extrinsic, v.lambda}; }
+std::vector<double*> blocks(TwoViews& v) { return {v.anchor, v.target, v.extrinsic, v.lambda()}; }
 
 constexpr double kFocal = 525.0;
 
@@ -105,7 +68,7 @@ TEST(ReprojectionFactor, RejectsBadSettingsAndPointsBehindTheCamera) {
   std::mt19937_64 rng(13);
   TwoViews v = two_views(rng);
   const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
-  v.lambda[0] = -v.lambda[0];  // the point is now behind both cameras
+  *v.lambda() = -*v.lambda();  // the point is now behind both cameras
   Eigen::Vector2d r;
   EXPECT_FALSE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
 }

@@ -1,5 +1,8 @@
 // The newest state's marginal covariance from the window's information (docs/estimator.md,
 // "Covariance").
+#include <algorithm>
+#include <vector>
+
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
 
@@ -70,24 +73,41 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     }
     ceres::CRSMatrix crs;
     if (!problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
-    const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> J(
+    // J = [J_s | J_l] (states | landmarks), column-major so that column blocks are cheap. The
+    // information is H = J^T J; the landmarks' block H_ll is block diagonal (one landmark per
+    // block) and a landmark touches only the poses of the keyframes that see it, so the Schur
+    // complement S = H_ss - H_sl H_ll^-1 H_ls is accumulated landmark by landmark on those rows.
+    const Eigen::SparseMatrix<double> J = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>(
         crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
         crs.values.data());
-    const Eigen::MatrixXd H = Eigen::MatrixXd(Eigen::SparseMatrix<double>(J.transpose() * J));
     const int nl = crs.num_cols - state_cols;
-    Eigen::MatrixXd S = H.topLeftCorner(state_cols, state_cols);
+    const Eigen::SparseMatrix<double> J_s = J.leftCols(state_cols);
+    Eigen::MatrixXd S = Eigen::MatrixXd(J_s.transpose() * J_s);
     if (nl > 0) {
-      // The landmarks' block of H is block diagonal (one landmark per block): invert block by block.
-      Eigen::MatrixXd H_sl_inv = Eigen::MatrixXd::Zero(state_cols, nl);
-      const Eigen::MatrixXd H_sl = H.topRightCorner(state_cols, nl);
+      const Eigen::SparseMatrix<double> J_l = J.rightCols(nl);
+      const Eigen::SparseMatrix<double> H_sl = J_s.transpose() * J_l;
+      std::vector<int> rows;
       for (int k = 0; k < nl; k += landmark_size) {
-        const Eigen::MatrixXd H_ll = H.block(state_cols + k, state_cols + k, landmark_size, landmark_size);
+        Eigen::MatrixXd H_ll(landmark_size, landmark_size);
+        for (int a = 0; a < landmark_size; ++a)
+          for (int b = 0; b <= a; ++b) H_ll(a, b) = H_ll(b, a) = J_l.col(k + a).dot(J_l.col(k + b));
         const Eigen::LDLT<Eigen::MatrixXd> ldlt(H_ll);
         // An unobserved landmark carries no information.
         if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12)) continue;
-        H_sl_inv.middleCols(k, landmark_size) = ldlt.solve(H_sl.middleCols(k, landmark_size).transpose()).transpose();
+        rows.clear();
+        for (int a = 0; a < landmark_size; ++a)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(H_sl, k + a); it; ++it) rows.push_back(it.row());
+        std::sort(rows.begin(), rows.end());
+        rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+        Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), landmark_size);
+        for (int a = 0; a < landmark_size; ++a)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(H_sl, k + a); it; ++it)
+            B(std::lower_bound(rows.begin(), rows.end(), it.row()) - rows.begin(), a) = it.value();
+        const Eigen::MatrixXd D = B * ldlt.solve(B.transpose());
+        for (std::size_t i = 0; i < rows.size(); ++i)
+          for (std::size_t j = 0; j < rows.size(); ++j)
+            S(rows[i], rows[j]) -= D(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
       }
-      S.noalias() -= H_sl_inv * H_sl.transpose();
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
     if (llt.info() != Eigen::Success) return std::nullopt;
