@@ -129,6 +129,10 @@ EstimatorConfig read_estimator_config(const Config& c) {
   static const CovarianceMethod covs[] = {CovarianceMethod::kSchur, CovarianceMethod::kCeres, CovarianceMethod::kOff};
   e.covariance_method =
       parse_enum(c.get_string("estimator.covariance", "schur", {"schur", "ceres", "off"}), cov_names, covs);
+  static const char* const weight_names[] = {"robust", "inliers"};
+  static const CovarianceWeights weights[] = {CovarianceWeights::kRobust, CovarianceWeights::kInliers};
+  e.covariance_weights = parse_enum(
+      c.get_string("estimator.covariance_weights", "inliers", {"robust", "inliers"}), weight_names, weights);
 
   static const char* const init_names[] = {"still", "hpnp", "pnp"};
   static const InitializationMethod inits[] = {InitializationMethod::kStill, InitializationMethod::kHybridPnp,

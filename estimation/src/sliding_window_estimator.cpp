@@ -100,7 +100,8 @@ SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorCon
     throw ConfigError("calibration", "cameras." + camera.name + ".depth",
                       "depth factors need the depth baseline and disparity sigma (calibration or "
                       "estimator.depth.baseline / estimator.depth.disparity_sigma), or estimator.depth.enabled=false");
-  loss = make_loss(cfg);
+  robust_loss = make_loss(cfg);
+  if (robust_loss) loss = std::make_shared<ceres::LossFunctionWrapper>(robust_loss.get(), ceres::DO_NOT_TAKE_OWNERSHIP);
   if (cfg.use_mag) mag_sigma_yaw = magnetometer_yaw_sigma(cfg.mag_sigma, cfg.mag_reference_field_enu);
 }
 
@@ -116,6 +117,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       time_offset_prior(o.time_offset_prior ? std::make_shared<MarginalizationPrior>(*o.time_offset_prior) : nullptr),
       last_seen(o.last_seen),
       loss(o.loss),
+      robust_loss(o.robust_loss),
       origin(o.origin),
       gps_lever_arm_B(o.gps_lever_arm_B),
       gps_loss(o.gps_loss),

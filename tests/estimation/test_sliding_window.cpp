@@ -166,6 +166,26 @@ TEST(SlidingWindowEstimator, SchurCovarianceEqualsCeresCovariance) {
   }
 }
 
+// The covariance's weights do not feed back into the estimate; Gaussian weights for inliers give
+// more information than the Cauchy loss's (which weighs a 1-sigma inlier by 1/2).
+TEST(SlidingWindowEstimator, InlierWeightsShrinkTheCovarianceOnly) {
+  const auto& rec = short_walk();
+  const auto robust = run(rec, {"estimator.covariance_weights=robust"});
+  const auto inliers = run(rec, {"estimator.covariance_weights=inliers"});
+  ASSERT_EQ(robust.size(), inliers.size());
+  std::vector<double> ratio;
+  for (std::size_t i = 0; i < robust.size(); ++i) {
+    ASSERT_EQ(robust[i].T_W_B.t, inliers[i].T_W_B.t) << i;
+    if (robust[i].mode == EstimatorMode::kInitializing) continue;
+    ratio.push_back(inliers[i].covariance.topLeftCorner<6, 6>().trace() /
+                    robust[i].covariance.topLeftCorner<6, 6>().trace());
+  }
+  ASSERT_GT(ratio.size(), 50u);
+  std::sort(ratio.begin(), ratio.end());
+  EXPECT_LT(ratio[ratio.size() / 2], 0.95);
+  EXPECT_GT(ratio.front(), 0.1);
+}
+
 // The whitened residuals after each solve, per factor type, against their noise models: with the
 // estimator's pixel sigma equal to the simulator's (1 px), no robust loss and solves run to
 // convergence (8 iterations leave new far tracks' reprojections at 1.85 per row at 15 Hz), a
@@ -339,7 +359,11 @@ TEST(EstimatorConfig, BadValuesNameTheKey) {
            {"estimator.features.far_threshold=-1", "estimator.features.far_threshold"},
            {"estimator.features.far_policy=maybe", "estimator.features.far_policy"},
            {"estimator.factors.imu=perhaps", "estimator.factors.imu"},
-           {"estimator.gps.huber_threshold=0", "estimator.gps.huber_threshold"}}) {
+           {"estimator.gps.huber_threshold=0", "estimator.gps.huber_threshold"},
+           {"estimator.features.anchor_bearing=free", "estimator.features.anchor_bearing"},
+           {"estimator.features.leaving_anchor=keep", "estimator.features.leaving_anchor"},
+           {"estimator.depth.point_covariance=diag", "estimator.depth.point_covariance"},
+           {"estimator.covariance_weights=all", "estimator.covariance_weights"}}) {
     const Config c = Config::parse("{}", "<test>", {set});
     const auto e = navaid::testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
     if (e) {

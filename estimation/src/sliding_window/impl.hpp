@@ -39,6 +39,9 @@ inline constexpr double kMinTriangulationAngle = 1.0 * M_PI / 180.0;
 inline constexpr double kGaugeSigma = 1e-3;
 inline constexpr double kPinnedPoseSigma = 1e-4;
 inline constexpr double kLooseSpeedBiasSigma = 1e2;
+// Covariance with covariance_weights = inliers: a visual residual block with |r|^2 above this
+// (about the 99.9 % point of a chi-square with 2 or 3 degrees of freedom) is left out.
+inline constexpr double kCovarianceGate = 16.0;
 // Covariance reported before initialization (nothing is known).
 inline constexpr double kUnknownVariance = 1e4;
 // Height offset of T_ENU_W when the registration had no fix heights [m].
@@ -121,7 +124,10 @@ struct SlidingWindowEstimator::Impl {
     std::optional<double> depth_m;
   };
   std::unordered_map<std::uint64_t, LastSeen> last_seen;
-  std::shared_ptr<ceres::LossFunction> loss;
+  // The visual factors' loss: a wrapper around the robust loss (null without one), which the
+  // covariance switches to the inlier gate (covariance_weights: inliers) while it evaluates.
+  std::shared_ptr<ceres::LossFunctionWrapper> loss;
+  std::shared_ptr<ceres::LossFunction> robust_loss;
 
   // GPS: fixes wait for the frame nearest to them; T_ENU_W = [yaw, t] joins the window once the
   // eLabrador registration of the first fixes against the VIO track succeeds.

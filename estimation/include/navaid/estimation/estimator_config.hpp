@@ -28,6 +28,10 @@ enum class AnchorBearing { kFixed, kEstimated };
 /// How the newest state's covariance is computed: Schur complement of the window's information
 /// (fast), ceres::Covariance (SPARSE_QR; reference, slower), or not at all.
 enum class CovarianceMethod { kSchur, kCeres, kOff };
+/// How the visual residuals are weighted in the covariance: as the robust loss weights them in the
+/// solve (Triggs-corrected, as ceres::Covariance), or at full Gaussian weight unless beyond the
+/// outlier gate (then not at all).
+enum class CovarianceWeights { kRobust, kInliers };
 /// How GPS enters (factors.gps): T_ENU_W and GPS factors in the window ("joint"), or the VIO window
 /// alone with T_ENU_W re-registered over the fixes at every fix (eLabrador, "decoupled").
 enum class GpsMode { kJoint, kDecoupled };
@@ -83,6 +87,7 @@ struct EstimatorConfig {
   /// evaluation of the window per frame).
   bool residual_diagnostics = false;
   CovarianceMethod covariance_method = CovarianceMethod::kSchur;
+  CovarianceWeights covariance_weights = CovarianceWeights::kInliers;
 
   // Initialization.
   InitializationMethod init_method = InitializationMethod::kStill;
