@@ -397,10 +397,10 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
     if (!anchor) continue;
     const SE3 T_W_Ca = T_W_C(*anchor);
     const bool near = a.depth_m && *a.depth_m <= cfg.far_threshold_m && sigma_lambda > 0;
-    const bool fixed = a.depth_m && !near && cfg.far_policy == FarFeaturePolicy::kFixed;
+    const bool fixed = far_fixed(track);
     // A landmark held constant keeps its bearing too (the plain factors, VINS-RGBD style).
     const bool estimated = bearing_estimated() && !fixed;
-    double* landmark = estimated ? track.landmark : &track.inverse_depth();
+    double* landmark = landmark_block(track);
     std::vector<Residual> r;
     bool depth_factor = false;
     bool sees_newest = false;

@@ -196,11 +196,17 @@ struct SlidingWindowEstimator::Impl {
   std::optional<double> triangulate(const FeatureTrack& track) const;
   const WindowState* state(std::uint64_t id) const;
   SE3 T_W_C(const WindowState& s) const { return s.T_W_B() * pose_from_block(extrinsic); }
-  /// The track's parameter block: its whole landmark when the anchor bearing is estimated, else
-  /// its inverse depth alone.
   bool bearing_estimated() const { return cfg.anchor_bearing == AnchorBearing::kEstimated; }
+  /// A far track (anchor depth beyond far_threshold) whose inverse depth far_policy=fixed holds.
+  bool far_fixed(const FeatureTrack& track) const {
+    const auto& depth = track.anchor().depth_m;
+    const bool near = depth && *depth <= cfg.far_threshold_m && sigma_lambda > 0;
+    return depth && !near && cfg.far_policy == FarFeaturePolicy::kFixed;
+  }
+  /// The track's parameter block: its whole landmark when the anchor bearing is estimated, else
+  /// (and for a far-fixed track, which keeps its bearing too) its inverse depth alone.
   double* landmark_block(FeatureTrack& track) const {
-    return bearing_estimated() ? track.landmark : &track.inverse_depth();
+    return bearing_estimated() && !far_fixed(track) ? track.landmark : &track.inverse_depth();
   }
   int landmark_block_size() const { return bearing_estimated() ? 3 : 1; }
 
