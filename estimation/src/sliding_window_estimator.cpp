@@ -33,6 +33,7 @@
 #include "navaid/estimation/marginalization.hpp"
 #include "navaid/estimation/state_prior_factor.hpp"
 #include "sliding_window/impl.hpp"
+#include "sliding_window/inlier_gate.hpp"
 
 namespace navaid::estimation {
 
@@ -607,6 +608,7 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
       marg.add(std::move(term));
     }
     try {
+      const sliding_window::GatedLoss gated(loss.get(), robust_loss.get(), cfg.prior_weights == CovarianceWeights::kInliers);
       marginal_prior = std::make_shared<MarginalizationPrior>(marg.marginalize());
       ++stats.marginalizations;
       marginalized = true;

@@ -186,6 +186,31 @@ TEST(SlidingWindowEstimator, InlierWeightsShrinkTheCovarianceOnly) {
   EXPECT_GT(ratio.front(), 0.1);
 }
 
+// Inlier weights in the marginalization prior: the prior carries the inliers' full information
+// (the robust weights halve a 1-sigma inlier's), so the covariance shrinks further, and the
+// estimate moves (the prior is part of the solve) but stays within its uncertainty.
+TEST(SlidingWindowEstimator, InlierPriorWeightsTightenThePrior) {
+  const auto& rec = short_walk();
+  const auto robust = run(rec, {"estimator.prior_weights=robust"});
+  const auto inliers = run(rec, {"estimator.prior_weights=inliers"});
+  ASSERT_EQ(robust.size(), inliers.size());
+  std::vector<double> ratio;
+  bool moved = false;
+  for (std::size_t i = 0; i < robust.size(); ++i) {
+    if (robust[i].mode == EstimatorMode::kInitializing) continue;
+    const double sigma = std::sqrt(robust[i].covariance.topLeftCorner<3, 3>().trace());
+    EXPECT_LT((robust[i].T_W_B.t - inliers[i].T_W_B.t).norm(), 3.0 * sigma) << i;
+    moved = moved || robust[i].T_W_B.t != inliers[i].T_W_B.t;
+    ratio.push_back(inliers[i].covariance.topLeftCorner<6, 6>().trace() /
+                    robust[i].covariance.topLeftCorner<6, 6>().trace());
+  }
+  ASSERT_GT(ratio.size(), 50u);
+  EXPECT_TRUE(moved);
+  std::sort(ratio.begin(), ratio.end());
+  EXPECT_LT(ratio[ratio.size() / 2], 0.95);
+  EXPECT_GT(ratio.front(), 0.1);
+}
+
 // The whitened residuals after each solve, per factor type, against their noise models: with the
 // estimator's pixel sigma equal to the simulator's (1 px), no robust loss and solves run to
 // convergence (8 iterations leave new far tracks' reprojections at 1.85 per row at 15 Hz), a
@@ -363,7 +388,8 @@ TEST(EstimatorConfig, BadValuesNameTheKey) {
            {"estimator.features.anchor_bearing=free", "estimator.features.anchor_bearing"},
            {"estimator.features.leaving_anchor=keep", "estimator.features.leaving_anchor"},
            {"estimator.depth.point_covariance=diag", "estimator.depth.point_covariance"},
-           {"estimator.covariance_weights=all", "estimator.covariance_weights"}}) {
+           {"estimator.covariance_weights=all", "estimator.covariance_weights"},
+           {"estimator.prior_weights=gaussian", "estimator.prior_weights"}}) {
     const Config c = Config::parse("{}", "<test>", {set});
     const auto e = navaid::testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
     if (e) {

@@ -7,49 +7,16 @@
 #include <Eigen/SparseCore>
 
 #include "impl.hpp"
+#include "inlier_gate.hpp"
 
 namespace navaid::estimation {
-
-namespace {
-
-// rho(s) = s up to the gate, constant beyond it: full Gaussian weight for inliers, none for outliers.
-class InlierGate final : public ceres::LossFunction {
- public:
-  void Evaluate(double s, double rho[3]) const override {
-    const bool inlier = s <= sliding_window::kCovarianceGate;
-    rho[0] = inlier ? s : sliding_window::kCovarianceGate;
-    rho[1] = inlier ? 1.0 : 0.0;
-    rho[2] = 0.0;
-  }
-};
-
-// Puts the inlier gate into the visual factors' loss wrapper for its lifetime.
-class GatedLoss {
- public:
-  GatedLoss(ceres::LossFunctionWrapper* wrapper, ceres::LossFunction* robust, bool enabled)
-      : wrapper_(enabled ? wrapper : nullptr), robust_(robust) {
-    if (wrapper_) wrapper_->Reset(&gate_, ceres::DO_NOT_TAKE_OWNERSHIP);
-  }
-  ~GatedLoss() {
-    if (wrapper_) wrapper_->Reset(robust_, ceres::DO_NOT_TAKE_OWNERSHIP);
-  }
-  GatedLoss(const GatedLoss&) = delete;
-  GatedLoss& operator=(const GatedLoss&) = delete;
-
- private:
-  InlierGate gate_;
-  ceres::LossFunctionWrapper* wrapper_;
-  ceres::LossFunction* robust_;
-};
-
-}  // namespace
 
 std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(ceres::Problem& problem) {
   const WindowState& s = *window.back();
   const bool with_enu = problem.HasParameterBlock(enu_alignment);
   NewestCovariance out;
   Eigen::Matrix<double, 15, 15> C;  // Ceres tangent [dp, d, v, b_g, b_a]
-  const GatedLoss gated(loss.get(), robust_loss.get(), cfg.covariance_weights == CovarianceWeights::kInliers);
+  const sliding_window::GatedLoss gated(loss.get(), robust_loss.get(), cfg.covariance_weights == CovarianceWeights::kInliers);
   if (cfg.covariance_method == CovarianceMethod::kCeres) {
     if (problem.IsParameterBlockConstant(s.speed_bias)) return std::nullopt;
     ceres::Covariance::Options co;

@@ -88,6 +88,8 @@ struct EstimatorConfig {
   bool residual_diagnostics = false;
   CovarianceMethod covariance_method = CovarianceMethod::kSchur;
   CovarianceWeights covariance_weights = CovarianceWeights::kInliers;
+  /// Weights of the visual factors in the marginalization prior (inliers: the covariance's gate).
+  CovarianceWeights prior_weights = CovarianceWeights::kRobust;
 
   // Initialization.
   InitializationMethod init_method = InitializationMethod::kStill;
