@@ -1,0 +1,70 @@
+#include "navaid/experiments/enu_position_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "navaid/experiments/time_association.hpp"
+
+namespace navaid::experiments {
+
+namespace {
+
+EnuPositionError accumulate(const std::vector<Vec3>& errors) {
+  EnuPositionError out;
+  double sq = 0, sq_h = 0, sq_v = 0;
+  for (const Vec3& e : errors) {
+    sq += e.squaredNorm();
+    sq_h += e.head<2>().squaredNorm();
+    sq_v += e.z() * e.z();
+    out.max_m = std::max(out.max_m, e.norm());
+  }
+  const double n = static_cast<double>(errors.size());
+  out.rmse_m = std::sqrt(sq / n);
+  out.horizontal_rmse_m = std::sqrt(sq_h / n);
+  out.vertical_rmse_m = std::sqrt(sq_v / n);
+  out.poses = errors.size();
+  return out;
+}
+
+std::vector<Timestamp> times_of(const std::vector<io::StampedPose>& poses) {
+  std::vector<Timestamp> t;
+  t.reserve(poses.size());
+  for (const auto& p : poses) t.push_back(p.t);
+  return t;
+}
+
+}  // namespace
+
+std::optional<EnuPositionError> enu_position_error(const std::vector<io::StampedPose>& estimate_enu,
+                                                   const std::vector<io::StampedPose>& groundtruth_enu) {
+  std::vector<Vec3> errors;
+  for (const auto& p : associate_poses(estimate_enu, groundtruth_enu)) errors.push_back(p.est.t - p.gt.t);
+  if (errors.empty()) return std::nullopt;
+  return accumulate(errors);
+}
+
+std::optional<EnuPositionError> rigid_registration_reference(const std::vector<GpsFix>& fixes,
+                                                             const std::vector<io::StampedPose>& groundtruth_enu,
+                                                             const Vec3& lever_arm_B, const GeodeticOrigin& origin,
+                                                             const std::vector<Timestamp>& evaluate_at,
+                                                             const estimation::GpsRegistrationOptions& options) {
+  std::vector<Timestamp> fix_times;
+  for (const auto& f : fixes) fix_times.push_back(f.t);
+  const std::vector<Timestamp> gt_times = times_of(groundtruth_enu);
+  std::vector<estimation::GpsRegistrationPair> pairs;
+  for (const auto& m : associate_by_time(fix_times, gt_times))
+    pairs.push_back({fixes[m.est], groundtruth_enu[m.gt].T_W_B * lever_arm_B});
+  if (pairs.empty()) return std::nullopt;
+  const estimation::GpsRegistration r = estimation::register_gps_to_world(pairs, origin, options);
+  if (!r.registered()) return std::nullopt;
+  const SE3 T = r.T_ENU_W();
+  std::vector<Vec3> errors;
+  for (const auto& m : associate_by_time(evaluate_at, gt_times)) {
+    const Vec3& p = groundtruth_enu[m.gt].T_W_B.t;
+    errors.push_back(T * p - p);
+  }
+  if (errors.empty()) return std::nullopt;
+  return accumulate(errors);
+}
+
+}  // namespace navaid::experiments
