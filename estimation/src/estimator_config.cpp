@@ -134,7 +134,7 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.covariance_weights = parse_enum(
       c.get_string("estimator.covariance_weights", "inliers", {"robust", "inliers"}), weight_names, weights);
   e.prior_weights = parse_enum(
-      c.get_string("estimator.prior_weights", "robust", {"robust", "inliers"}), weight_names, weights);
+      c.get_string("estimator.prior_weights", "inliers", {"robust", "inliers"}), weight_names, weights);
 
   static const char* const init_names[] = {"still", "hpnp", "pnp"};
   static const InitializationMethod inits[] = {InitializationMethod::kStill, InitializationMethod::kHybridPnp,

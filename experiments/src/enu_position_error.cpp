@@ -43,25 +43,65 @@ std::optional<EnuPositionError> enu_position_error(const std::vector<io::Stamped
   return accumulate(errors);
 }
 
+namespace {
+
+// Fixes paired with the ground-truth antenna position at their time, in fix order.
+std::vector<estimation::GpsRegistrationPair> antenna_pairs(const std::vector<GpsFix>& fixes,
+                                                           const std::vector<io::StampedPose>& groundtruth_enu,
+                                                           const Vec3& lever_arm_B) {
+  std::vector<Timestamp> fix_times;
+  for (const auto& f : fixes) fix_times.push_back(f.t);
+  std::vector<estimation::GpsRegistrationPair> pairs;
+  for (const auto& m : associate_by_time(fix_times, times_of(groundtruth_enu)))
+    pairs.push_back({fixes[m.est], groundtruth_enu[m.gt].T_W_B * lever_arm_B});
+  return pairs;
+}
+
+}  // namespace
+
 std::optional<EnuPositionError> rigid_registration_reference(const std::vector<GpsFix>& fixes,
                                                              const std::vector<io::StampedPose>& groundtruth_enu,
                                                              const Vec3& lever_arm_B, const GeodeticOrigin& origin,
                                                              const std::vector<Timestamp>& evaluate_at,
                                                              const estimation::GpsRegistrationOptions& options) {
-  std::vector<Timestamp> fix_times;
-  for (const auto& f : fixes) fix_times.push_back(f.t);
-  const std::vector<Timestamp> gt_times = times_of(groundtruth_enu);
-  std::vector<estimation::GpsRegistrationPair> pairs;
-  for (const auto& m : associate_by_time(fix_times, gt_times))
-    pairs.push_back({fixes[m.est], groundtruth_enu[m.gt].T_W_B * lever_arm_B});
+  const auto pairs = antenna_pairs(fixes, groundtruth_enu, lever_arm_B);
   if (pairs.empty()) return std::nullopt;
   const estimation::GpsRegistration r = estimation::register_gps_to_world(pairs, origin, options);
   if (!r.registered()) return std::nullopt;
   const SE3 T = r.T_ENU_W();
   std::vector<Vec3> errors;
-  for (const auto& m : associate_by_time(evaluate_at, gt_times)) {
+  for (const auto& m : associate_by_time(evaluate_at, times_of(groundtruth_enu))) {
     const Vec3& p = groundtruth_enu[m.gt].T_W_B.t;
     errors.push_back(T * p - p);
+  }
+  if (errors.empty()) return std::nullopt;
+  return accumulate(errors);
+}
+
+std::optional<EnuPositionError> causal_registration_reference(const std::vector<GpsFix>& fixes,
+                                                              const std::vector<io::StampedPose>& groundtruth_enu,
+                                                              const Vec3& lever_arm_B, const GeodeticOrigin& origin,
+                                                              const std::vector<Timestamp>& evaluate_at,
+                                                              const estimation::GpsRegistrationOptions& options) {
+  const auto all = antenna_pairs(fixes, groundtruth_enu, lever_arm_B);
+  std::vector<estimation::GpsRegistrationPair> seen;
+  std::optional<SE3> T;
+  std::size_t next = 0;
+  std::vector<Vec3> errors;
+  for (const auto& m : associate_by_time(evaluate_at, times_of(groundtruth_enu))) {
+    const Timestamp t = evaluate_at[m.est];
+    bool added = false;
+    while (next < all.size() && all[next].fix.t <= t) {
+      seen.push_back(all[next++]);
+      added = true;
+    }
+    if (added) {
+      const estimation::GpsRegistration r = estimation::register_gps_to_world(seen, origin, options);
+      if (r.registered()) T = r.T_ENU_W();
+    }
+    if (!T) continue;
+    const Vec3& p = groundtruth_enu[m.gt].T_W_B.t;
+    errors.push_back(*T * p - p);
   }
   if (errors.empty()) return std::nullopt;
   return accumulate(errors);

@@ -259,7 +259,7 @@ TEST(SlidingWindowEstimator, AblationsChangeTheResultAndStillWork) {
        {"estimator.marginalization=false", "estimator.features.far_policy=fixed", "estimator.loss.type=huber",
         "estimator.window_size=5", "estimator.features.leaving_anchor=restart",
         "estimator.features.leaving_anchor=reuse", "estimator.features.anchor_bearing=fixed",
-        "estimator.depth.point_covariance=paper",
+        "estimator.depth.point_covariance=paper", "estimator.prior_weights=robust",
         "estimator.solver.linear_solver=sparse_normal_cholesky", "estimator.factors.depth_3d=false",
         "estimator.factors.imu=false"}) {
     const auto est = run(rec, {"estimator.covariance=off", set});

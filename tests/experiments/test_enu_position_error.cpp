@@ -73,9 +73,18 @@ TEST(EnuPositionError, RigidRegistrationReferenceIsTheCommonOffset) {
   EXPECT_EQ(shifted->poses, times.size());
   EXPECT_NEAR(shifted->horizontal_rmse_m, 2.5, 0.01);
   EXPECT_NEAR(shifted->vertical_rmse_m, 0.7, 0.01);
+  // Causal: the same offset once enough of the walk is in, nothing before the registration.
+  const auto causal =
+      causal_registration_reference(fixes_of(gt, lever, Vec3(1.5, -2.0, 0.7)), gt, lever, kOrigin, times);
+  ASSERT_TRUE(causal);
+  EXPECT_LT(causal->poses, times.size());
+  EXPECT_GT(causal->poses, times.size() / 2);
+  EXPECT_NEAR(causal->horizontal_rmse_m, 2.5, 0.01);
+  EXPECT_NEAR(causal->vertical_rmse_m, 0.7, 0.01);
   // Too little motion to register (the first 3 s): no reference.
   const std::vector<io::StampedPose> start(gt.begin(), gt.begin() + 30);
   EXPECT_FALSE(rigid_registration_reference(fixes_of(start, lever, Vec3::Zero()), start, lever, kOrigin, times));
+  EXPECT_FALSE(causal_registration_reference(fixes_of(start, lever, Vec3::Zero()), start, lever, kOrigin, times));
 }
 
 }  // namespace

@@ -104,10 +104,12 @@ TEST(Reproduction, TheRegisteredMatrixReadsAndDefinesTheThreeMethods) {
   EXPECT_EQ(m.variants[2].name, "vins-rgbd");
   EXPECT_TRUE(has(m.variants[2], "estimator.features.far_policy=fixed"));
   EXPECT_TRUE(has(m.variants[1], "estimator.features.far_policy=free"));
-  // All three are VINS-Mono windows: exact anchor bearings, re-anchored tracks reused.
+  // All three are VINS-Mono windows: exact anchor bearings, re-anchored tracks reused, robust
+  // weights in the prior.
   for (const auto& v : m.variants) {
     EXPECT_TRUE(has(v, "estimator.features.anchor_bearing=fixed")) << v.name;
     EXPECT_TRUE(has(v, "estimator.features.leaving_anchor=reuse")) << v.name;
+    EXPECT_TRUE(has(v, "estimator.prior_weights=robust")) << v.name;
   }
   EXPECT_TRUE(has(m.variants[0], "estimator.depth.point_covariance=paper"));
   EXPECT_GE(m.seeds.size(), 5u);

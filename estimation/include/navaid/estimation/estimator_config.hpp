@@ -89,7 +89,7 @@ struct EstimatorConfig {
   CovarianceMethod covariance_method = CovarianceMethod::kSchur;
   CovarianceWeights covariance_weights = CovarianceWeights::kInliers;
   /// Weights of the visual factors in the marginalization prior (inliers: the covariance's gate).
-  CovarianceWeights prior_weights = CovarianceWeights::kRobust;
+  CovarianceWeights prior_weights = CovarianceWeights::kInliers;
 
   // Initialization.
   InitializationMethod init_method = InitializationMethod::kStill;

@@ -38,4 +38,14 @@ std::optional<EnuPositionError> rigid_registration_reference(const std::vector<G
                                                              const std::vector<Timestamp>& evaluate_at,
                                                              const estimation::GpsRegistrationOptions& options = {});
 
+/// As rigid_registration_reference, but causal, as an estimator sees the fixes: at each time of
+/// `evaluate_at`, the ground truth registered to the fixes up to that time (re-registered at each
+/// new fix). Times before the first successful registration are left out (`poses` counts the
+/// rest). nullopt when it never registers.
+std::optional<EnuPositionError> causal_registration_reference(const std::vector<GpsFix>& fixes,
+                                                              const std::vector<io::StampedPose>& groundtruth_enu,
+                                                              const Vec3& lever_arm_B, const GeodeticOrigin& origin,
+                                                              const std::vector<Timestamp>& evaluate_at,
+                                                              const estimation::GpsRegistrationOptions& options = {});
+
 }  // namespace navaid::experiments
