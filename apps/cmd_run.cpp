@@ -321,23 +321,20 @@ void run(const RunArgs& a) {
       for (const auto& p : enu) times.push_back(p.t);
       estimation::GpsRegistrationOptions options;
       options.error_correlation_time_s = est_config.gps_correlation_time_s;
-      const auto reference = experiments::rigid_registration_reference(
-          recording.gps, gt, recording.calibration.gps_lever_arm_B, *recording.origin, times, options);
-      if (reference)
-        g["rigid_registration_reference"] = {
-            {"rmse_m", reference->rmse_m},
-            {"horizontal_rmse_m", reference->horizontal_rmse_m},
-            {"vertical_rmse_m", reference->vertical_rmse_m},
-            {"note", "the ground truth registered to all fixes (4-DOF): the multipath averaged over the walk"}};
-      const auto causal = experiments::causal_registration_reference(
-          recording.gps, gt, recording.calibration.gps_lever_arm_B, *recording.origin, times, options);
-      if (causal)
-        g["causal_registration_reference"] = {
-            {"rmse_m", causal->rmse_m},
-            {"horizontal_rmse_m", causal->horizontal_rmse_m},
-            {"vertical_rmse_m", causal->vertical_rmse_m},
-            {"frames", causal->poses},
-            {"note", "the ground truth registered to the fixes up to each frame (4-DOF), as a causal estimator sees them"}};
+      const auto reference_json = [](const experiments::EnuPositionError& e, const char* note) {
+        return nlohmann::ordered_json{{"rmse_m", e.rmse_m},
+                                      {"horizontal_rmse_m", e.horizontal_rmse_m},
+                                      {"vertical_rmse_m", e.vertical_rmse_m},
+                                      {"frames", e.poses},
+                                      {"note", note}};
+      };
+      const Vec3& lever = recording.calibration.gps_lever_arm_B;
+      if (const auto r = experiments::rigid_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+        g["rigid_registration_reference"] =
+            reference_json(*r, "the ground truth registered to all fixes (4-DOF): the multipath averaged over the walk");
+      if (const auto r = experiments::causal_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+        g["causal_registration_reference"] = reference_json(
+            *r, "the ground truth registered to the fixes up to each frame (4-DOF), as a causal estimator sees them");
     }
     j["gps"] = g;
   }

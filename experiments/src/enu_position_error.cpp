@@ -33,18 +33,6 @@ std::vector<Timestamp> times_of(const std::vector<io::StampedPose>& poses) {
   return t;
 }
 
-}  // namespace
-
-std::optional<EnuPositionError> enu_position_error(const std::vector<io::StampedPose>& estimate_enu,
-                                                   const std::vector<io::StampedPose>& groundtruth_enu) {
-  std::vector<Vec3> errors;
-  for (const auto& p : associate_poses(estimate_enu, groundtruth_enu)) errors.push_back(p.est.t - p.gt.t);
-  if (errors.empty()) return std::nullopt;
-  return accumulate(errors);
-}
-
-namespace {
-
 // Fixes paired with the ground-truth antenna position at their time, in fix order.
 std::vector<estimation::GpsRegistrationPair> antenna_pairs(const std::vector<GpsFix>& fixes,
                                                            const std::vector<io::StampedPose>& groundtruth_enu,
@@ -57,25 +45,53 @@ std::vector<estimation::GpsRegistrationPair> antenna_pairs(const std::vector<Gps
   return pairs;
 }
 
+// The registered ground truth's error at each evaluation time: one registration to all fixes
+// (batch) or, causally, to the fixes up to that time (redone at each new fix).
+std::optional<EnuPositionError> registration_reference(const std::vector<GpsFix>& fixes,
+                                                       const std::vector<io::StampedPose>& groundtruth_enu,
+                                                       const Vec3& lever_arm_B, const GeodeticOrigin& origin,
+                                                       const std::vector<Timestamp>& evaluate_at,
+                                                       const estimation::GpsRegistrationOptions& options, bool causal) {
+  const auto all = antenna_pairs(fixes, groundtruth_enu, lever_arm_B);
+  if (all.empty()) return std::nullopt;
+  std::vector<estimation::GpsRegistrationPair> used;
+  std::optional<SE3> T;
+  std::size_t next = 0;
+  const auto take_until = [&](Timestamp t) {
+    const std::size_t before = next;
+    while (next < all.size() && all[next].fix.t <= t) used.push_back(all[next++]);
+    if (next == before) return;
+    const estimation::GpsRegistration r = estimation::register_gps_to_world(used, origin, options);
+    if (r.registered()) T = r.T_ENU_W();
+  };
+  if (!causal) take_until(all.back().fix.t);
+  std::vector<Vec3> errors;
+  for (const auto& m : associate_by_time(evaluate_at, times_of(groundtruth_enu))) {
+    if (causal) take_until(evaluate_at[m.est]);
+    if (!T) continue;
+    const Vec3& p = groundtruth_enu[m.gt].T_W_B.t;
+    errors.push_back(*T * p - p);
+  }
+  if (errors.empty()) return std::nullopt;
+  return accumulate(errors);
+}
+
 }  // namespace
+
+std::optional<EnuPositionError> enu_position_error(const std::vector<io::StampedPose>& estimate_enu,
+                                                   const std::vector<io::StampedPose>& groundtruth_enu) {
+  std::vector<Vec3> errors;
+  for (const auto& p : associate_poses(estimate_enu, groundtruth_enu)) errors.push_back(p.est.t - p.gt.t);
+  if (errors.empty()) return std::nullopt;
+  return accumulate(errors);
+}
 
 std::optional<EnuPositionError> rigid_registration_reference(const std::vector<GpsFix>& fixes,
                                                              const std::vector<io::StampedPose>& groundtruth_enu,
                                                              const Vec3& lever_arm_B, const GeodeticOrigin& origin,
                                                              const std::vector<Timestamp>& evaluate_at,
                                                              const estimation::GpsRegistrationOptions& options) {
-  const auto pairs = antenna_pairs(fixes, groundtruth_enu, lever_arm_B);
-  if (pairs.empty()) return std::nullopt;
-  const estimation::GpsRegistration r = estimation::register_gps_to_world(pairs, origin, options);
-  if (!r.registered()) return std::nullopt;
-  const SE3 T = r.T_ENU_W();
-  std::vector<Vec3> errors;
-  for (const auto& m : associate_by_time(evaluate_at, times_of(groundtruth_enu))) {
-    const Vec3& p = groundtruth_enu[m.gt].T_W_B.t;
-    errors.push_back(T * p - p);
-  }
-  if (errors.empty()) return std::nullopt;
-  return accumulate(errors);
+  return registration_reference(fixes, groundtruth_enu, lever_arm_B, origin, evaluate_at, options, false);
 }
 
 std::optional<EnuPositionError> causal_registration_reference(const std::vector<GpsFix>& fixes,
@@ -83,28 +99,7 @@ std::optional<EnuPositionError> causal_registration_reference(const std::vector<
                                                               const Vec3& lever_arm_B, const GeodeticOrigin& origin,
                                                               const std::vector<Timestamp>& evaluate_at,
                                                               const estimation::GpsRegistrationOptions& options) {
-  const auto all = antenna_pairs(fixes, groundtruth_enu, lever_arm_B);
-  std::vector<estimation::GpsRegistrationPair> seen;
-  std::optional<SE3> T;
-  std::size_t next = 0;
-  std::vector<Vec3> errors;
-  for (const auto& m : associate_by_time(evaluate_at, times_of(groundtruth_enu))) {
-    const Timestamp t = evaluate_at[m.est];
-    bool added = false;
-    while (next < all.size() && all[next].fix.t <= t) {
-      seen.push_back(all[next++]);
-      added = true;
-    }
-    if (added) {
-      const estimation::GpsRegistration r = estimation::register_gps_to_world(seen, origin, options);
-      if (r.registered()) T = r.T_ENU_W();
-    }
-    if (!T) continue;
-    const Vec3& p = groundtruth_enu[m.gt].T_W_B.t;
-    errors.push_back(*T * p - p);
-  }
-  if (errors.empty()) return std::nullopt;
-  return accumulate(errors);
+  return registration_reference(fixes, groundtruth_enu, lever_arm_B, origin, evaluate_at, options, true);
 }
 
 }  // namespace navaid::experiments
