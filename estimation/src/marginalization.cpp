@@ -290,10 +290,42 @@ MarginalizationPrior Marginalizer::marginalize() const {
     if (info.constant) continue;
     (info.marginalized ? marginal_size : kept_size) += info.tangent;
   }
-  int next_marginal = 0;
+  // Leaving blocks that share no term with each other (the landmarks) are eliminated one by one
+  // on the few columns they touch before the dense rest; they come first in H.
+  std::vector<std::vector<int>> neighbours(infos.size());
+  for (const MarginalizationTerm& term : terms_)
+    for (const double* a : term.blocks)
+      for (const double* c : term.blocks) {
+        const int ia = index.at(a), ic = index.at(c);
+        if (ia != ic && infos[ia].marginalized && !infos[ic].constant) neighbours[ia].push_back(ic);
+      }
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  std::vector<int> order;  // leaving blocks, smallest first: landmarks before the states they share terms with
+  for (std::size_t i = 0; i < infos.size(); ++i)
+    if (infos[i].marginalized) order.push_back(static_cast<int>(i));
+  std::stable_sort(order.begin(), order.end(), [&](int a, int c) { return infos[a].tangent < infos[c].tangent; });
+  std::vector<char> independent(infos.size(), 0);
+  std::vector<int> eliminated_first;
+  for (const int i : order) {
+    const bool free = std::none_of(neighbours[i].begin(), neighbours[i].end(), [&](int j) { return independent[j]; });
+    if (!free) continue;
+    independent[i] = 1;
+    eliminated_first.push_back(i);
+  }
+  int next_first = 0;
+  for (const int i : eliminated_first) {
+    infos[i].offset = next_first;
+    next_first += infos[i].tangent;
+  }
+  const int first_size = next_first;
+  int next_marginal = first_size;
   int next_kept = marginal_size;
-  for (BlockInfo& info : infos) {
-    if (info.constant) continue;
+  for (std::size_t i = 0; i < infos.size(); ++i) {
+    BlockInfo& info = infos[i];
+    if (info.constant || independent[i]) continue;
     int& next = info.marginalized ? next_marginal : next_kept;
     info.offset = next;
     next += info.tangent;
@@ -365,13 +397,34 @@ MarginalizationPrior Marginalizer::marginalize() const {
 
   // 3. Schur complement with the pseudo-inverse H_mm^+ = R^+ R^+T (R^T R = H_mm):
   //    H* = H_kk - W^T W, b* = b_k - W^T R^+T b_m, W = R^+T H_mk.
+  //    First each independent leaving block i on its neighbours' rows and columns (H_mm is block
+  //    diagonal there, so this is the same complement, each block's pseudo-inverse its own), then
+  //    the remaining leaving blocks densely.
+  for (const int i : eliminated_first) {
+    const BlockInfo& bi = infos[i];
+    const SquareRoot R(H.block(bi.offset, bi.offset, bi.tangent, bi.tangent), options_);
+    const Eigen::VectorXd w_b = R.solve_transpose(b.segment(bi.offset, bi.tangent));
+    std::vector<Eigen::MatrixXd> W;  // R^+T H_i,a per neighbour a
+    W.reserve(neighbours[i].size());
+    for (const int a : neighbours[i])
+      W.push_back(R.solve_transpose(H.block(bi.offset, infos[a].offset, bi.tangent, infos[a].tangent)));
+    for (std::size_t x = 0; x < W.size(); ++x) {
+      const BlockInfo& ba = infos[neighbours[i][x]];
+      b.segment(ba.offset, ba.tangent).noalias() -= W[x].transpose() * w_b;
+      for (std::size_t y = 0; y < W.size(); ++y) {
+        const BlockInfo& bc = infos[neighbours[i][y]];
+        H.block(ba.offset, bc.offset, ba.tangent, bc.tangent).noalias() -= W[x].transpose() * W[y];
+      }
+    }
+  }
+  const int rest_size = marginal_size - first_size;
   Eigen::MatrixXd H_star = H.bottomRightCorner(kept_size, kept_size);
   Eigen::VectorXd b_star = b.tail(kept_size);
-  if (marginal_size > 0 && kept_size > 0) {
-    const SquareRoot R_mm(H.topLeftCorner(marginal_size, marginal_size), options_);
-    const Eigen::MatrixXd W = R_mm.solve_transpose(H.topRightCorner(marginal_size, kept_size));
+  if (rest_size > 0 && kept_size > 0) {
+    const SquareRoot R_mm(H.block(first_size, first_size, rest_size, rest_size), options_);
+    const Eigen::MatrixXd W = R_mm.solve_transpose(H.block(first_size, marginal_size, rest_size, kept_size));
     H_star.noalias() -= W.transpose() * W;
-    b_star.noalias() -= W.transpose() * R_mm.solve_transpose(b.head(marginal_size));
+    b_star.noalias() -= W.transpose() * R_mm.solve_transpose(b.segment(first_size, rest_size));
   }
 
   // 4. Square-root form of the prior: J = R, r = R^+T b* (R^T R = H*), so J^T r = b*.
