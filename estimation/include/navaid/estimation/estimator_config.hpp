@@ -60,7 +60,7 @@ struct EstimatorConfig {
   /// Below this many features with usable visual factors the frame is IMU-only.
   int min_visual_features = 8;
   /// What happens to a track whose anchor keyframe is marginalized (docs/estimator.md, "Features").
-  LeavingAnchorPolicy leaving_anchor = LeavingAnchorPolicy::kReanchor;
+  LeavingAnchorPolicy leaving_anchor = LeavingAnchorPolicy::kReuse;
   AnchorBearing anchor_bearing = AnchorBearing::kEstimated;
   /// Depth noise: 0 = the calibration's depth_disparity_sigma_px / depth_baseline_m.
   double disparity_sigma_px = 0;
