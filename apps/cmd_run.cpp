@@ -320,7 +320,7 @@ void run(const RunArgs& a) {
       g["enu_vertical_rmse_m"] = error->vertical_rmse_m;
       g["enu_position_max_m"] = error->max_m;
       g["note"] = "no alignment: ground truth taken as ENU at the recording's origin (simulator convention)";
-      // What the fixes allow: the true path registered to all of them (batch, eq. 6-7).
+      // What the fixes allow: the true path registered to them (eq. 6-7), to all at once and causally.
       std::vector<Timestamp> times;
       for (const auto& p : enu) times.push_back(p.t);
       estimation::GpsRegistrationOptions options;
