@@ -224,6 +224,17 @@ void run(const RunArgs& a) {
                          {"attempts", st.initialization_attempts},
                          {"failures", st.initialization_failures},
                          {"last_failure", st.last_initialization_failure}};
+  if (st.failures > 0)
+    spdlog::warn("{} implausible solve(s): {} window restart(s) in the same map frame, {} re-initialization(s) in a "
+                 "new map frame (last: {})",
+                 st.failures, st.restarts, st.map_frame_resets, st.last_failure);
+  if (st.map_frame_resets > 0)
+    spdlog::warn("the map frame W was reset: the ATE aligns the whole run at once and so also measures the jump");
+  j["failures"] = {{"detection", est_config.failure_detection},
+                   {"count", st.failures},
+                   {"restarts", st.restarts},
+                   {"map_frame_resets", st.map_frame_resets},
+                   {"last", st.last_failure}};
   if (st.initialized_at_s >= 0 && !recording.imu.empty())
     j["initialization"]["time_s"] = st.initialized_at_s - ns_to_seconds(recording.imu.front().t);
   if (est_config.estimate_time_offset) j["camera_time_offset_s"] = estimator.camera_time_offset_s();

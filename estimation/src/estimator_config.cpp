@@ -150,6 +150,25 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.init_sigma_accel_bias =
       c.get_double("estimator.initialization.sigma_accel_bias", e.init_sigma_accel_bias, {1e-8, 10});
   e.lost_after_s = c.get_double("estimator.lost_after", e.lost_after_s, {0, kInf});
+  e.failure_detection = c.get_bool("estimator.failure.detection", e.failure_detection);
+  FailureThresholds& f = e.failure;
+  f.max_accel_bias = c.get_double("estimator.failure.max_accel_bias", f.max_accel_bias, {1e-3, kInf});
+  f.max_gyro_bias = c.get_double("estimator.failure.max_gyro_bias", f.max_gyro_bias, {1e-4, kInf});
+  f.max_position_jump_m = c.get_double("estimator.failure.max_position_jump", f.max_position_jump_m, {1e-3, kInf});
+  f.max_rotation_jump_rad =
+      c.get_double("estimator.failure.max_rotation_jump", f.max_rotation_jump_rad, {1e-3, M_PI});
+  f.max_speed_mps = c.get_double("estimator.failure.max_speed", f.max_speed_mps, {1e-2, kInf});
+  f.min_inlier_fraction = c.get_double("estimator.failure.min_inlier_fraction", f.min_inlier_fraction, {0, 1});
+  f.collapse_from = c.get_double("estimator.failure.collapse_from", f.collapse_from, {0, 1});
+  f.min_visual_residuals = static_cast<int>(
+      c.get_int("estimator.failure.min_visual_residuals", f.min_visual_residuals, 1, 100000));
+  e.confirmed_inlier_fraction =
+      c.get_double("estimator.failure.confirmed_inlier_fraction", e.confirmed_inlier_fraction, {0, 1});
+  e.restart_max_gap_s = c.get_double("estimator.failure.restart_max_gap", e.restart_max_gap_s, {0, 60});
+  e.restart_accel_density =
+      c.get_double("estimator.failure.restart_accel_density", e.restart_accel_density, {0, 100});
+  e.restart_sigma_velocity =
+      c.get_double("estimator.failure.restart_sigma_velocity", e.restart_sigma_velocity, {0, 100});
 
   e.estimate_extrinsic = c.get_bool("estimator.extrinsic.estimate", e.estimate_extrinsic);
   e.extrinsic_sigma_rotation_rad =

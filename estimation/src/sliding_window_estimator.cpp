@@ -17,6 +17,7 @@
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/core/geodesy.hpp"
+#include "navaid/estimation/failure_detection.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/gauss_markov_factor.hpp"
 #include "navaid/estimation/factors/gps_position_factor.hpp"
@@ -61,7 +62,7 @@ ceres::LinearSolverType solver_type(LinearSolverKind kind) {
 
 SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorConfig& config,
                                    const std::string& camera_name, const std::optional<GeodeticOrigin>& geodetic_origin)
-    : cfg(config), origin(geodetic_origin), gps_lever_arm_B(rig.gps_lever_arm_B) {
+    : cfg(config), origin(geodetic_origin), gps_lever_arm_B(rig.gps_lever_arm_B), init_method(config.init_method) {
   if (cfg.use_gps && !origin)
     throw ConfigError("recording", "origin", "GPS factors need the geodetic origin of the ENU frame");
   gps_loss = std::make_shared<ceres::HuberLoss>(cfg.gps_huber_threshold);
@@ -140,6 +141,11 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       state_prior_id(o.state_prior_id),
       next_id(o.next_id),
       initialized(o.initialized),
+      init_method(o.init_method),
+      restarting(o.restarting),
+      gaussian_solves(o.gaussian_solves),
+      confirmed(o.confirmed),
+      inlier_shares(o.inlier_shares),
       last_event_t(o.last_event_t),
       imu_only_since(o.imu_only_since),
       last_estimate(o.last_estimate),
@@ -516,11 +522,23 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   // quarters of the solves at max_iterations for sub-millimetre changes): measured -11 to -28 %
   // estimator time, ATE within +-3 mm on lab walks (docs/estimator.md, "navaid run").
   so.function_tolerance = 1e-4;
+  if (gaussian_solves > 0) {
+    // A restarted window: few states, a velocity far from its estimate (Levenberg-Marquardt moves
+    // it a fraction of the way per iteration): run to convergence.
+    so.max_num_iterations = std::max(cfg.max_iterations, kRestartMaxIterations);
+    so.function_tolerance = 1e-8;
+  }
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;
   ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  {
+    const sliding_window::GatedLoss plain(loss.get(), robust_loss.get(), gaussian_solves > 0, /*gaussian=*/true);
+    ceres::Solve(so, &problem, &summary);
+  }
+  if (gaussian_solves > 0) --gaussian_solves;
   ++stats.solves;
+  count.solver_failed = summary.termination_type == ceres::FAILURE;
+  if (cfg.failure_detection) count_newest_inliers(residuals, count);
   if (cfg.residual_diagnostics) accumulate_residual_statistics(residuals);
   stats.features_in_last_solve = count.all_features;
   stats.depth_features_in_last_solve = count.depth_features;
@@ -648,7 +666,7 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   ++stats.frames;
   const Timestamp t = frame.t + camera_to_imu_ns;
   const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
-  if (!initialized && cfg.init_method != InitializationMethod::kStill)
+  if (!initialized && init_method != InitializationMethod::kStill)
     return collect_for_visual_initialization(frame, t);
   if (!initialized) {
     if (imu.empty() || imu.front().t > t - still_ns) return initializing_estimate(frame.t);
@@ -656,7 +674,10 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
     return *last_estimate;
   }
   if (t <= window.back()->t) throw Error("estimator: feature frames must have increasing time stamps");
+  return add_frame(frame, t);
+}
 
+StateEstimate SlidingWindowEstimator::Impl::add_frame(const FeatureFrame& frame, Timestamp t) {
   const WindowState& last_kf = *window.back();
   auto s = std::make_unique<WindowState>();
   s->id = next_id++;
@@ -725,6 +746,20 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   } else if (decoupled_T_ENU_W) {
     e.T_ENU_W = *decoupled_T_ENU_W;
     e.T_ENU_W_covariance = decoupled_covariance;
+  }
+  if (cfg.failure_detection) {
+    // A restarted frame's state is carried from the good estimate, not solved: no jump to check.
+    const StateEstimate* previous = last_estimate && last_estimate->mode != EstimatorMode::kInitializing && !restarting
+                                        ? &*last_estimate
+                                        : nullptr;
+    VisualSupport support = count.newest;
+    record_inlier_share(e.t, support);
+    std::optional<std::string> why = count.solver_failed ? std::optional<std::string>("solver failed")
+                                                         : detect_estimator_failure(e, previous, support, cfg.failure);
+    if (why) return recover(frame, *why);
+    if (count.newest.residuals >= static_cast<std::size_t>(cfg.failure.min_visual_residuals) &&
+        count.newest.inlier_fraction() >= cfg.confirmed_inlier_fraction)
+      confirm(e);
   }
   last_estimate = e;
 

@@ -70,6 +70,8 @@ ImuSample ImuModel::measure(const KinematicState& body, Timestamp t) {
     s.gyro += gaussian3(gyro_noise_sigma());
     s.accel += gaussian3(accel_noise_sigma());
   }
+  for (const auto& shock : options_.shocks)
+    if (t >= shock.begin && t < shock.end) s.accel += shock.accel_I;
   return s;
 }
 

@@ -92,6 +92,18 @@ void read_imu(const Config& c, SimulationConfig& s, const SensorPreset& preset) 
   s.imu_options.initial_accel_bias = get_vec3(c, "sensor.imu.initial_accel_bias", Vec3::Zero(), {-5, 5});
   s.imu_options.gyro_scale_misalignment = get_mat3(c, "sensor.imu.gyro_scale_misalignment", Mat3::Identity());
   s.imu_options.accel_scale_misalignment = get_mat3(c, "sensor.imu.accel_scale_misalignment", Mat3::Identity());
+  if (c.has("sensor.imu.shocks")) {  // [start, duration, ax, ay, az, ...]: seconds since the walk starts, m/s^2
+    const auto v = c.get_doubles("sensor.imu.shocks", 0, {-1e6, 1e6});
+    if (v.size() % 5 != 0)
+      throw ConfigError(c.origin("sensor.imu.shocks"), "sensor.imu.shocks",
+                        "needs groups [start_s, duration_s, ax, ay, az, ...]");
+    for (std::size_t i = 0; i < v.size(); i += 5) {
+      if (!(v[i + 1] > 0))
+        throw ConfigError(c.origin("sensor.imu.shocks"), "sensor.imu.shocks", "a shock's duration must be > 0 s");
+      s.imu_options.shocks.push_back({kSimulationEpoch + seconds_to_ns(v[i]), kSimulationEpoch + seconds_to_ns(v[i] + v[i + 1]),
+                                      Vec3(v[i + 2], v[i + 3], v[i + 4])});
+    }
+  }
 }
 
 void read_gps(const Config& c, SimulationConfig& s, const Scenario& scenario) {

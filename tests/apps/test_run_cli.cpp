@@ -80,6 +80,30 @@ TEST(RunCli, WritesTrajectoryEstimatesAndSummary) {
   EXPECT_NE(typo.output.find("estimator.windowsize"), std::string::npos) << typo.output;
 }
 
+TEST(RunCli, AShockedImuIsDetectedAndTheWindowRestartsInTheSameMapFrame) {
+  // A cane striking a kerb: 100 m/s^2 on the accelerometer's x axis for 50 ms, 5 s into the walk.
+  ScratchDir dir("run_cli_shock");
+  const fs::path rec = dir / "walk";
+  const auto sim = navaid_cli("simulate --scenario lab-walk-1 --mount hand --seed 5 --out '" + rec.string() +
+                              "' --set simulation.mode=features --set duration=10 --set sensor.camera.rate=15"
+                              " --set features.max_per_frame=80 --set 'sensor.imu.shocks=[5.0, 0.05, 100, 0, 0]'");
+  ASSERT_EQ(sim.status, 0) << sim.output;
+  const auto on = navaid_cli("run --no-plot --recording '" + rec.string() + "' --out '" + (dir / "on").string() + "'");
+  ASSERT_EQ(on.status, 0) << on.output;
+  EXPECT_NE(on.output.find("implausible"), std::string::npos) << on.output;
+  const auto s_on = nlohmann::json::parse(read_text(dir / "on" / "summary.json"));
+  EXPECT_GE(s_on["failures"]["count"].get<int>(), 1);
+  EXPECT_GE(s_on["failures"]["restarts"].get<int>(), 1);
+  EXPECT_EQ(s_on["failures"]["map_frame_resets"].get<int>(), 0);
+  EXPECT_LT(s_on["ate"]["percent_of_path"].get<double>(), 1.0) << s_on.dump();
+  const auto off = navaid_cli("run --no-plot --recording '" + rec.string() + "' --out '" + (dir / "off").string() +
+                              "' --set estimator.failure.detection=false");
+  ASSERT_EQ(off.status, 0) << off.output;
+  const auto s_off = nlohmann::json::parse(read_text(dir / "off" / "summary.json"));
+  EXPECT_EQ(s_off["failures"]["count"].get<int>(), 0);
+  EXPECT_GT(s_off["ate"]["percent_of_path"].get<double>(), 5.0) << s_off.dump();
+}
+
 TEST(RunCli, RecordingWithoutFeaturesIsAClearError) {
   ScratchDir dir("run_cli_nofeatures");
   const fs::path rec = simulate_features(dir);

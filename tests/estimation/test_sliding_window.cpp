@@ -390,7 +390,12 @@ TEST(EstimatorConfig, BadValuesNameTheKey) {
            {"estimator.features.leaving_anchor=keep", "estimator.features.leaving_anchor"},
            {"estimator.depth.point_covariance=diag", "estimator.depth.point_covariance"},
            {"estimator.covariance_weights=all", "estimator.covariance_weights"},
-           {"estimator.prior_weights=gaussian", "estimator.prior_weights"}}) {
+           {"estimator.prior_weights=gaussian", "estimator.prior_weights"},
+           {"estimator.failure.detection=maybe", "estimator.failure.detection"},
+           {"estimator.failure.min_inlier_fraction=1.5", "estimator.failure.min_inlier_fraction"},
+           {"estimator.failure.max_speed=0", "estimator.failure.max_speed"},
+           {"estimator.failure.max_rotation_jump=4", "estimator.failure.max_rotation_jump"},
+           {"estimator.failure.restart_max_gap=-1", "estimator.failure.restart_max_gap"}}) {
     const Config c = Config::parse("{}", "<test>", {set});
     const auto e = navaid::testing::expect_throw<ConfigError>([&] { read_estimator_config(c); }, set);
     if (e) {

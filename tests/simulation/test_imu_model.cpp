@@ -5,7 +5,10 @@
 #include <cmath>
 #include <vector>
 
+#include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/simulation/scenario.hpp"
+#include "navaid/simulation/simulation_config.hpp"
 #include "test_support.hpp"
 
 namespace navaid::simulation {
@@ -94,6 +97,36 @@ TEST(ImuModel, StaticLevelImuMeasuresMinusGravity) {
   const ImuSample s = model.measure(KinematicState{}, 0);
   EXPECT_LT((s.accel - Vec3(0, 0, 9.81)).norm(), 1e-12);
   EXPECT_LT(s.gyro.norm(), 1e-15);
+}
+
+TEST(ImuModel, AShockAddsItsForceInsideItsIntervalOnly) {
+  ImuModelOptions opt = noiseless();
+  opt.shocks.push_back({1'000'000'000, 1'050'000'000, Vec3(30, -5, 2)});
+  ImuModel model(navaid::testing::euroc_imu_calibration(200.0), opt);
+  const Vec3 rest(0, 0, 9.81);
+  EXPECT_LT((model.measure(KinematicState{}, 999'999'999).accel - rest).norm(), 1e-12);
+  EXPECT_LT((model.measure(KinematicState{}, 1'000'000'000).accel - rest - Vec3(30, -5, 2)).norm(), 1e-12);
+  EXPECT_LT((model.measure(KinematicState{}, 1'049'999'999).accel - rest - Vec3(30, -5, 2)).norm(), 1e-12);
+  const ImuSample after = model.measure(KinematicState{}, 1'050'000'000);
+  EXPECT_LT((after.accel - rest).norm(), 1e-12);
+  EXPECT_LT(after.gyro.norm(), 1e-15);  // the gyro is not touched
+}
+
+TEST(ImuModel, ShocksAreReadFromTheSimulationConfig) {
+  const Scenario scenario = make_scenario("corridor");
+  const SimulationConfig c = read_simulation_config(
+      Config::parse("{}", "<test>", {"sensor.imu.shocks=[2.0, 0.05, 40, 0, 0, 5.5, 0.1, 0, 0, -30]"}), scenario);
+  ASSERT_EQ(c.imu_options.shocks.size(), 2u);
+  EXPECT_EQ(c.imu_options.shocks[0].begin, kSimulationEpoch + 2'000'000'000);
+  EXPECT_EQ(c.imu_options.shocks[0].end, kSimulationEpoch + 2'050'000'000);
+  EXPECT_EQ(c.imu_options.shocks[1].accel_I, Vec3(0, 0, -30));
+  for (const char* bad : {"sensor.imu.shocks=[2.0, 0.05, 40, 0]", "sensor.imu.shocks=[2.0, 0, 40, 0, 0]"}) {
+    const auto e = testing::expect_throw<ConfigError>(
+        [&] { read_simulation_config(Config::parse("{}", "<test>", {bad}), scenario); }, bad);
+    if (e) {
+      EXPECT_EQ(e->key(), "sensor.imu.shocks");
+    }
+  }
 }
 
 TEST(ImuModel, ScaleAndMisalignmentMultiplyTheTrueSignals) {

@@ -14,6 +14,7 @@
 
 #include "navaid/core/camera.hpp"
 #include "navaid/estimation/estimator_config.hpp"
+#include "navaid/estimation/failure_detection.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/feature_track_store.hpp"
 #include "navaid/estimation/gps_registration.hpp"
@@ -51,6 +52,8 @@ inline constexpr double kUnregisteredHeightSigma = 100.0;
 // measured 0.025 rad of yaw error on lab-walk-1), and of its unused translation part.
 inline constexpr double kMagHeadingPriorSigma = 1.0;  // [rad]
 inline constexpr double kMagUnusedPriorSigma = 1.0;
+// Iterations of a restarted window's solves (failure_recovery.cpp): small problems, far first guesses.
+inline constexpr int kRestartMaxIterations = 50;
 
 struct WindowState {
   std::uint64_t id = 0;
@@ -92,6 +95,10 @@ struct VisualCount {
   std::size_t features = 0;        // tracks with factors that the newest frame observes
   std::size_t depth_features = 0;  // ... of which with a depth factor
   std::size_t all_features = 0;    // tracks with factors in the window
+  bool solver_failed = false;      // Ceres ended in FAILURE (the state is whatever it reached)
+  // Visual residual blocks on the newest frame after the solve, and those inside the covariance's
+  // inlier gate: when vision and the IMU disagree, the solve leaves most of them outside.
+  VisualSupport newest;
 };
 
 }  // namespace navaid::estimation::sliding_window
@@ -163,6 +170,20 @@ struct SlidingWindowEstimator::Impl {
   std::uint64_t state_prior_id = 0;
   std::uint64_t next_id = 0;
   bool initialized = false;
+  // The method of the next initialization: the configured one, hpnp for a re-initialization of a
+  // still start (the user is not standing still then).
+  InitializationMethod init_method = InitializationMethod::kStill;
+  bool restarting = false;  // solving the frame of a failure again, from the restarted window
+  // Solves left without the robust loss after a restart: the loss presumes a good first guess,
+  // which the restarted window's velocity is not.
+  int gaussian_solves = 0;
+  // Estimates vision confirmed (failure.*), the newest restart_max_gap_s + a velocity baseline.
+  std::deque<StateEstimate> confirmed;
+  void confirm(const StateEstimate& e);
+  // Inlier shares of the last second's frames (those with enough visual residual blocks).
+  std::deque<std::pair<Timestamp, double>> inlier_shares;
+  /// Sets support.recent_median from the shares, then adds this frame's.
+  void record_inlier_share(Timestamp t, VisualSupport& support);
   Timestamp last_event_t = std::numeric_limits<Timestamp>::min();
   std::optional<Timestamp> imu_only_since;
   std::optional<StateEstimate> last_estimate;
@@ -183,6 +204,14 @@ struct SlidingWindowEstimator::Impl {
 
   std::vector<StateEstimate> process(const SensorEvent& event);
   StateEstimate handle_frame(const FeatureFrame& frame);
+  /// A new state for the frame, propagated from the newest keyframe, then solve_newest.
+  StateEstimate add_frame(const FeatureFrame& frame, Timestamp t);
+  /// After a failed solve of `frame` (failure_recovery.cpp): restart from the last good estimate
+  /// and solve the frame again, or re-initialize in a new map frame when that is not possible.
+  StateEstimate recover(const FeatureFrame& frame, const std::string& why);
+  /// Empties the window, its tracks and priors; with `new_map_frame`, also what ties W to the
+  /// world (ENU registration, magnetometer reference) and the initialization.
+  void clear_window(bool new_map_frame);
   StateEstimate initialize(const FeatureFrame& frame, Timestamp t);
   StateEstimate collect_for_visual_initialization(const FeatureFrame& frame, Timestamp t);
   bool visual_initialization();
@@ -215,6 +244,7 @@ struct SlidingWindowEstimator::Impl {
   VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
   std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem);
   void accumulate_residual_statistics(const std::vector<Residual>& residuals);
+  void count_newest_inliers(const std::vector<Residual>& residuals, VisualCount& count) const;
   void remove_failed_tracks();
   StateEstimate estimate_of(const WindowState& s, Timestamp frame_t, EstimatorMode mode, const Mat15& cov) const;
   void slide_out_oldest();

@@ -117,7 +117,7 @@ bool SlidingWindowEstimator::Impl::visual_initialization() {
       keyframes[index.at(o.frame_id)].observations.push_back({id, o.m, o.depth_m});
 
   WindowSfmOptions so;
-  so.method = cfg.init_method == InitializationMethod::kPnp ? PoseChangeMethod::kPnp : PoseChangeMethod::kHybrid;
+  so.method = init_method == InitializationMethod::kPnp ? PoseChangeMethod::kPnp : PoseChangeMethod::kHybrid;
   so.focal_px = focal_px;
   so.pixel_sigma_px = cfg.pixel_sigma_px;
   if (sigma_lambda > 0) so.inverse_depth_sigma = sigma_lambda;

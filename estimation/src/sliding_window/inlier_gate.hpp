@@ -19,13 +19,13 @@ class InlierGate final : public ceres::LossFunction {
   }
 };
 
-// Puts the inlier gate into the visual factors' loss wrapper for its lifetime (no-op when disabled
-// or without a robust loss).
+// Puts the inlier gate (or, `gaussian`, no loss at all) into the visual factors' loss wrapper for
+// its lifetime (no-op when disabled or without a robust loss).
 class GatedLoss {
  public:
-  GatedLoss(ceres::LossFunctionWrapper* wrapper, ceres::LossFunction* robust, bool enabled)
+  GatedLoss(ceres::LossFunctionWrapper* wrapper, ceres::LossFunction* robust, bool enabled, bool gaussian = false)
       : wrapper_(enabled ? wrapper : nullptr), robust_(robust) {
-    if (wrapper_) wrapper_->Reset(&gate_, ceres::DO_NOT_TAKE_OWNERSHIP);
+    if (wrapper_) wrapper_->Reset(gaussian ? nullptr : &gate_, ceres::DO_NOT_TAKE_OWNERSHIP);
   }
   ~GatedLoss() {
     if (wrapper_) wrapper_->Reset(robust_, ceres::DO_NOT_TAKE_OWNERSHIP);

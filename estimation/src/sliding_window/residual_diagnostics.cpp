@@ -58,3 +58,23 @@ void SlidingWindowEstimator::Impl::accumulate_residual_statistics(const std::vec
 }
 
 }  // namespace navaid::estimation
+
+namespace navaid::estimation {
+
+void SlidingWindowEstimator::Impl::count_newest_inliers(const std::vector<Residual>& residuals,
+                                                        VisualCount& count) const {
+  const double* newest = window.back()->pose;
+  std::vector<double> r;
+  for (const Residual& res : residuals) {
+    // Visual factors: blocks (anchor pose, target pose, T_B_C, landmark[, td]).
+    if (res.blocks.size() < 4 || res.blocks[2] != extrinsic || res.blocks[1] != newest) continue;
+    r.resize(static_cast<std::size_t>(res.cost->num_residuals()));
+    if (!res.cost->Evaluate(res.blocks.data(), r.data(), nullptr)) continue;
+    double sq = 0;
+    for (double v : r) sq += v * v;
+    ++count.newest.residuals;
+    if (sq <= kCovarianceGate) ++count.newest.inliers;
+  }
+}
+
+}  // namespace navaid::estimation

@@ -3,6 +3,7 @@
 // prefix. Every key, its default and its range is documented in docs/estimator.md ("Sliding
 // window"); every switch is an ablation. Values that come from the rig (focal length, depth
 // baseline and disparity noise) are taken from the calibration unless a key overrides them.
+#include <cmath>
 #include <string>
 
 #include "navaid/core/config.hpp"
@@ -39,6 +40,24 @@ enum class GpsMode { kJoint, kDecoupled };
 /// visual-inertial initialization (window SfM + alignment, docs/initialization.md) whose pose change
 /// is HPnP (W-ROMA RGBD-VIO) or 3D-2D PnP (VINS-RGBD).
 enum class InitializationMethod { kStill, kHybridPnp, kPnp };
+
+/// What a solve must not produce (VINS-Mono's failure detection, with a pedestrian's limits).
+struct FailureThresholds {
+  double max_accel_bias = 2.5;  ///< |b_a| [m/s^2] (VINS-Mono 2.5)
+  double max_gyro_bias = 1.0;   ///< |b_g| [rad/s] (VINS-Mono 1.0)
+  /// Position change between consecutive estimates beyond the previous velocity times the time
+  /// between them [m] (a walker at 30 Hz moves 5 cm a frame).
+  double max_position_jump_m = 1.0;
+  double max_rotation_jump_rad = 50.0 * M_PI / 180.0;  ///< between consecutive estimates (VINS-Mono 50 deg)
+  double max_speed_mps = 10.0;                         ///< |v| (walking: ~1.5 m/s)
+  /// Share of the newest frame's visual residual blocks inside the inlier gate (|r|^2 <= 16)
+  /// below which vision and the IMU disagree: the solve followed one and rejected the other.
+  double min_inlier_fraction = 0.5;
+  /// Checked when the newest frame has at least this many visual residual blocks.
+  int min_visual_residuals = 8;
+  /// ... and only after the median share of the last second was at least this.
+  double collapse_from = 0.8;
+};
 
 struct EstimatorConfig {
   int window_size = 10;  ///< keyframes in the window
@@ -123,6 +142,21 @@ struct EstimatorConfig {
 
   /// IMU-only for longer than this: mode "lost".
   double lost_after_s = 2.0;
+
+  // Failure detection after every solve (failure_detection.hpp) and recovery: a restart of the
+  // window from the last good estimate (the map frame kept), or, without one, a new
+  // initialization (hpnp when the method is still: the user is walking).
+  bool failure_detection = true;
+  FailureThresholds failure;
+  /// A restart starts from the newest estimate that vision confirmed (this share of its frame's
+  /// visual residual blocks inside the gate) within restart_max_gap_s before the failed frame,
+  /// carried to the frame at constant velocity with the gyro's rotation.
+  double confirmed_inlier_fraction = 0.9;
+  double restart_max_gap_s = 1.0;
+  /// Uncertainty added to the good estimate's velocity [m/s], and the
+  /// walker's acceleration over the gap as white noise of this density [m/s^2/sqrt(s)].
+  double restart_sigma_velocity = 0.5;
+  double restart_accel_density = 2.0;
 
   // Camera-IMU calibration estimated online (VINS-Mono style), starting from the rig calibration
   // with a Gaussian prior of these sigmas around it.

@@ -74,6 +74,13 @@ struct EstimatorStatistics {
   std::size_t initialization_failures = 0;
   std::string last_initialization_failure;
   double initialized_at_s = -1;  ///< IMU-clock time of the initialization [s] (-1: not yet)
+  /// Failure detection (estimator.failure.*): solves found implausible, the last reason (with its
+  /// time), window restarts from the last good estimate (map frame kept) and re-initializations
+  /// in a new map frame (W moved: consumers must drop what they built in the old one).
+  std::size_t failures = 0;
+  std::string last_failure;
+  std::size_t restarts = 0;
+  std::size_t map_frame_resets = 0;
   /// Per factor type ("imu", "reprojection", "depth_3d", "inverse_depth", "prior", "gps", ...),
   /// filled only with estimator.diagnostics.residuals.
   std::map<std::string, ResidualStatistics> residuals;

@@ -21,6 +21,14 @@
 
 namespace navaid::simulation {
 
+/// A mechanical shock (a cane striking a kerb, the phone knocked): this specific force [m/s^2, IMU
+/// frame] added to every accelerometer sample in [begin, end), beyond what the motion explains.
+struct ImuShock {
+  Timestamp begin = 0;
+  Timestamp end = 0;
+  Vec3 accel_I = Vec3::Zero();
+};
+
 struct ImuModelOptions {
   std::uint64_t seed = 0;
   bool white_noise = true;  ///< add n_g, n_a
@@ -29,6 +37,7 @@ struct ImuModelOptions {
   Vec3 initial_accel_bias = Vec3::Zero();  ///< [m/s^2]
   Mat3 gyro_scale_misalignment = Mat3::Identity();   ///< M_g, within 0.2 of I entry-wise
   Mat3 accel_scale_misalignment = Mat3::Identity();  ///< M_a, within 0.2 of I entry-wise
+  std::vector<ImuShock> shocks;
 };
 
 class ImuModel {
