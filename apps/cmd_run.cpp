@@ -217,6 +217,7 @@ void run(const RunArgs& a) {
   j["frames"] = estimates.size();
   j["keyframes"] = st.keyframes;
   j["solves"] = st.solves;
+  j["solver_iterations"] = st.solver_iterations;
   j["marginalizations"] = st.marginalizations;
   j["marginalization_failures"] = st.marginalization_failures;
   j["covariance_failures"] = st.covariance_failures;

@@ -537,6 +537,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   }
   if (gaussian_solves > 0) --gaussian_solves;
   ++stats.solves;
+  stats.solver_iterations += summary.iterations.size() > 0 ? summary.iterations.size() - 1 : 0;
   count.solver_failed = summary.termination_type == ceres::FAILURE;
   if (cfg.failure_detection) count_newest_inliers(residuals, count);
   if (cfg.residual_diagnostics) accumulate_residual_statistics(residuals);
@@ -544,7 +545,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   stats.depth_features_in_last_solve = count.depth_features;
   // New frames are placed in the IMU clock with the current offset estimate.
   if (cfg.estimate_time_offset) camera_to_imu_ns = static_cast<Timestamp>(std::llround(time_offset[0] * 1e9));
-  if (covariance) *covariance = newest_covariance(problem);
+  if (covariance) *covariance = newest_covariance(problem, residuals);
   return count;
 }
 

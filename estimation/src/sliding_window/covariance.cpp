@@ -1,17 +1,19 @@
 // The newest state's marginal covariance from the window's information (docs/estimator.md,
 // "Covariance").
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Cholesky>
-#include <Eigen/SparseCore>
 
 #include "impl.hpp"
 #include "inlier_gate.hpp"
 
 namespace navaid::estimation {
 
-std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(ceres::Problem& problem) {
+std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(ceres::Problem& problem,
+                                                                             const std::vector<Residual>& residuals) {
   const WindowState& s = *window.back();
   const bool with_enu = problem.HasParameterBlock(enu_alignment);
   NewestCovariance out;
@@ -37,83 +39,147 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     }
   } else {
     // Same quantity from the Gauss-Newton information J^T J (robust losses applied, as
-    // ceres::Covariance does): Schur-complement the inverse depths (a diagonal block), then the
-    // newest state's block of the inverse. Columns: T_ENU_W when present, the magnetometer's psi
-    // when present, the online extrinsic, the states oldest first (the newest last), then every
-    // free inverse depth; blocks left out of the list are held constant by Evaluate.
-    ceres::Problem::EvaluateOptions eo;
+    // ceres::Covariance does), accumulated residual block by residual block in the tangent space:
+    // the state blocks into a dense S (columns: T_ENU_W when present, the magnetometer's psi when
+    // present, the online extrinsic, td, the GPS biases, the states oldest first, the newest
+    // last), each landmark's own 3x3 (or 1x1) information and its blocks with the poses that see
+    // it; then the landmarks are Schur-complemented out, S = H_ss - sum H_sl H_ll^-1 H_ls, one by
+    // one on the poses they touch, in track order (deterministic), and the newest state's block
+    // of S^-1 is read off.
+    struct Column {
+      int offset;
+      int size;
+    };
+    std::unordered_map<const double*, Column> columns;
     int state_cols = 0;
-    // Blocks estimated with the states (T_ENU_W first: its columns are read back below). psi and
-    // the online calibration correlate with every state: columns of their own, not held constant.
-    std::vector<std::pair<double*, int>> extra;
-    if (with_enu) extra.emplace_back(enu_alignment, kEnuAlignmentSize);
-    if (problem.HasParameterBlock(mag_alignment)) extra.emplace_back(mag_alignment, kEnuAlignmentSize);
-    if (!problem.IsParameterBlockConstant(extrinsic)) extra.emplace_back(extrinsic, kPoseTangentSize);
-    if (problem.HasParameterBlock(time_offset)) extra.emplace_back(time_offset, 1);
-    for (const auto& w : window)
-      if (problem.HasParameterBlock(w->gps_bias)) extra.emplace_back(w->gps_bias, 3);
-    for (const auto& [block, size] : extra) {
-      eo.parameter_blocks.push_back(block);
+    auto add_column = [&](const double* block, int size) {
+      columns[block] = {state_cols, size};
       state_cols += size;
-    }
+    };
+    if (with_enu) add_column(enu_alignment, kEnuAlignmentSize);
+    if (problem.HasParameterBlock(mag_alignment)) add_column(mag_alignment, kEnuAlignmentSize);
+    if (!problem.IsParameterBlockConstant(extrinsic)) add_column(extrinsic, kPoseTangentSize);
+    if (problem.HasParameterBlock(time_offset)) add_column(time_offset, 1);
+    for (const auto& w : window)
+      if (problem.HasParameterBlock(w->gps_bias)) add_column(w->gps_bias, 3);
     for (const auto& w : window) {
-      eo.parameter_blocks.push_back(w->pose);
-      state_cols += kPoseTangentSize;
-      if (!problem.IsParameterBlockConstant(w->speed_bias)) {
-        eo.parameter_blocks.push_back(w->speed_bias);
-        state_cols += kSpeedBiasSize;
-      }
+      if (!problem.IsParameterBlockConstant(w->pose)) add_column(w->pose, kPoseTangentSize);
+      if (!problem.IsParameterBlockConstant(w->speed_bias)) add_column(w->speed_bias, kSpeedBiasSize);
     }
-    // Landmarks (inverse depths, or [bearing, inverse depth]) in track order: Ceres lists its
-    // blocks by address, which would make the sums below (and so the covariance's last bits)
-    // depend on where the allocator put the tracks.
     const int landmark_size = landmark_block_size();
+    std::unordered_map<const double*, std::size_t> landmark_index;
     for (auto& [id, track] : tracks.tracks()) {
       double* landmark = landmark_block(track);
       if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark))
-        eo.parameter_blocks.push_back(landmark);
+        landmark_index.emplace(landmark, landmark_index.size());
     }
-    ceres::CRSMatrix crs;
-    if (!problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
-    // J = [J_s | J_l] (states | landmarks), column-major so that column blocks are cheap. The
-    // information is H = J^T J; the landmarks' block H_ll is block diagonal (one landmark per
-    // block) and a landmark touches only the poses of the keyframes that see it, so the Schur
-    // complement S = H_ss - H_sl H_ll^-1 H_ls is accumulated landmark by landmark on those rows.
-    const Eigen::SparseMatrix<double> J = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>(
-        crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
-        crs.values.data());
-    const int nl = crs.num_cols - state_cols;
-    const Eigen::SparseMatrix<double> J_s = J.leftCols(state_cols);
-    Eigen::MatrixXd S = Eigen::MatrixXd(J_s.transpose() * J_s);
-    if (nl > 0) {
-      const Eigen::SparseMatrix<double> J_l = J.rightCols(nl);
-      const Eigen::SparseMatrix<double> H_sl = J_s.transpose() * J_l;
-      std::vector<int> rows;
-      for (int k = 0; k < nl; k += landmark_size) {
-        Eigen::MatrixXd H_ll(landmark_size, landmark_size);
-        for (int a = 0; a < landmark_size; ++a)
-          for (int b = 0; b <= a; ++b) H_ll(a, b) = H_ll(b, a) = J_l.col(k + a).dot(J_l.col(k + b));
-        const Eigen::LDLT<Eigen::MatrixXd> ldlt(H_ll);
-        // An unobserved landmark carries no information.
-        if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12)) continue;
-        rows.clear();
-        for (int a = 0; a < landmark_size; ++a)
-          for (Eigen::SparseMatrix<double>::InnerIterator it(H_sl, k + a); it; ++it) rows.push_back(it.row());
-        std::sort(rows.begin(), rows.end());
-        rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-        Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), landmark_size);
-        for (int a = 0; a < landmark_size; ++a)
-          for (Eigen::SparseMatrix<double>::InnerIterator it(H_sl, k + a); it; ++it)
-            B(std::lower_bound(rows.begin(), rows.end(), it.row()) - rows.begin(), a) = it.value();
-        const Eigen::MatrixXd D = B * ldlt.solve(B.transpose());
-        for (std::size_t i = 0; i < rows.size(); ++i)
-          for (std::size_t j = 0; j < rows.size(); ++j)
-            S(rows[i], rows[j]) -= D(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    struct LandmarkInformation {
+      Eigen::Matrix3d H_ll = Eigen::Matrix3d::Zero();
+      std::vector<std::pair<int, Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 15, 3>>> H_sl;  // (state offset, block)
+    };
+    std::vector<LandmarkInformation> landmarks(landmark_index.size());
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(state_cols, state_cols);
+
+    // Scratch reused across residual blocks (no allocation per block once grown).
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    using JMap = Eigen::Map<RowMajor>;
+    std::vector<double> r;
+    std::vector<std::vector<double>> ambient, tangent;
+    std::vector<int> tangent_cols;
+    std::vector<double*> jacobian_ptrs;
+    // The pose blocks' d(ambient)/d(tangent), once per block.
+    std::unordered_map<const double*, Eigen::Matrix<double, 7, 6, Eigen::RowMajor>> plus;
+    for (const auto& w : window)
+      if (columns.count(w->pose)) manifold_for_covariance->PlusJacobian(w->pose, plus[w->pose].data());
+    if (columns.count(extrinsic)) manifold_for_covariance->PlusJacobian(extrinsic, plus[extrinsic].data());
+    for (const Residual& res : residuals) {
+      const int rows = res.cost->num_residuals();
+      const std::size_t nb = res.blocks.size();
+      if (ambient.size() < nb) ambient.resize(nb), tangent.resize(nb);
+      tangent_cols.assign(nb, 0);
+      jacobian_ptrs.assign(nb, nullptr);
+      bool any = false;
+      for (std::size_t i = 0; i < nb; ++i) {
+        const double* b = res.blocks[i];
+        if (!columns.count(b) && !landmark_index.count(b)) continue;  // held constant
+        ambient[i].resize(static_cast<std::size_t>(rows * res.cost->parameter_block_sizes()[i]));
+        jacobian_ptrs[i] = ambient[i].data();
+        any = true;
+      }
+      if (!any) continue;
+      r.resize(static_cast<std::size_t>(rows));
+      if (!res.cost->Evaluate(res.blocks.data(), r.data(), jacobian_ptrs.data())) return std::nullopt;
+      // Ceres' robust-loss correction of the Jacobian (its Corrector: sqrt(rho') (I - alpha r r^T / |r|^2)).
+      const Eigen::Map<const Eigen::VectorXd> rv(r.data(), rows);
+      double scale = 1.0, alpha_sq = 0.0;
+      if (res.loss) {
+        const double sq = rv.squaredNorm();
+        double rho[3];
+        res.loss->Evaluate(sq, rho);
+        scale = std::sqrt(std::max(rho[1], 0.0));
+        if (sq > 0 && rho[2] > 0 && rho[1] > 0) alpha_sq = (1.0 - std::sqrt(1.0 + 2.0 * sq * rho[2] / rho[1])) / sq;
+        if (scale == 0.0) continue;  // no weight: no information
+      }
+      for (std::size_t i = 0; i < nb; ++i) {
+        if (!jacobian_ptrs[i]) continue;
+        const int cols = res.cost->parameter_block_sizes()[i];
+        JMap J(ambient[i].data(), rows, cols);
+        if (alpha_sq != 0.0) J -= alpha_sq * rv * (rv.transpose() * J);
+        J *= scale;
+        const auto p = plus.find(res.blocks[i]);
+        if (p != plus.end()) {
+          tangent[i].resize(static_cast<std::size_t>(rows * kPoseTangentSize));
+          JMap(tangent[i].data(), rows, kPoseTangentSize).noalias() = J * p->second;
+          tangent_cols[i] = kPoseTangentSize;
+        } else {
+          tangent[i].swap(ambient[i]);
+          tangent_cols[i] = cols;
+        }
+      }
+      // Accumulate J_i^T J_j over the pairs of blocks.
+      for (std::size_t i = 0; i < nb; ++i) {
+        if (!jacobian_ptrs[i]) continue;
+        const JMap Ti(tangent[i].data(), rows, tangent_cols[i]);
+        const auto ci = columns.find(res.blocks[i]);
+        const auto li = landmark_index.find(res.blocks[i]);
+        for (std::size_t j = 0; j < nb; ++j) {
+          if (!jacobian_ptrs[j]) continue;
+          const JMap Tj(tangent[j].data(), rows, tangent_cols[j]);
+          const auto cj = columns.find(res.blocks[j]);
+          if (ci != columns.end() && cj != columns.end()) {
+            S.block(ci->second.offset, cj->second.offset, Ti.cols(), Tj.cols()).noalias() += Ti.transpose() * Tj;
+          } else if (li != landmark_index.end() && j == i) {
+            landmarks[li->second].H_ll.topLeftCorner(landmark_size, landmark_size).noalias() += Ti.transpose() * Ti;
+          } else if (ci != columns.end() && cj == columns.end()) {
+            const auto lj = landmark_index.find(res.blocks[j]);
+            if (lj == landmark_index.end()) continue;
+            auto& blocks = landmarks[lj->second].H_sl;
+            const int offset = ci->second.offset;
+            auto it = std::find_if(blocks.begin(), blocks.end(), [&](const auto& x) { return x.first == offset; });
+            if (it == blocks.end()) {
+              blocks.emplace_back(offset, Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 15, 3>::Zero(ci->second.size, 3));
+              it = std::prev(blocks.end());
+            }
+            it->second.leftCols(landmark_size).noalias() += Ti.transpose() * Tj;
+          }
+        }
+      }
+    }
+    for (const LandmarkInformation& l : landmarks) {
+      const Eigen::MatrixXd H_ll = l.H_ll.topLeftCorner(landmark_size, landmark_size);
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(H_ll);
+      // An unobserved landmark carries no information.
+      if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12)) continue;
+      for (const auto& [oa, Ba] : l.H_sl) {
+        const Eigen::MatrixXd Xa = ldlt.solve(Eigen::MatrixXd(Ba.leftCols(landmark_size).transpose()));
+        for (const auto& [ob, Bb] : l.H_sl)
+          S.block(ob, oa, Bb.rows(), Ba.rows()) -= Bb.leftCols(landmark_size) * Xa;
       }
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
     if (llt.info() != Eigen::Success) return std::nullopt;
     // The newest state's columns are the last ones: its pose, and its speed-bias unless constant.
+    if (!columns.count(s.pose)) return std::nullopt;
     const int newest = problem.IsParameterBlockConstant(s.speed_bias) ? kPoseTangentSize : 15;
     const int enu = with_enu ? kEnuAlignmentSize : 0;
     Eigen::MatrixXd E = Eigen::MatrixXd::Zero(state_cols, newest + enu);

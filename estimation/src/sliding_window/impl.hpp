@@ -242,7 +242,9 @@ struct SlidingWindowEstimator::Impl {
   std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* fixed_inverse_depths);
   /// Solves the window; with `covariance`, also the newest state's covariance (nullopt on failure).
   VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
-  std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem);
+  std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem, const std::vector<Residual>& residuals);
+  // The pose manifold the covariance maps pose Jacobians to the tangent space with.
+  std::shared_ptr<ceres::Manifold> manifold_for_covariance{make_pose_manifold()};
   void accumulate_residual_statistics(const std::vector<Residual>& residuals);
   void count_newest_inliers(const std::vector<Residual>& residuals, VisualCount& count) const;
   void remove_failed_tracks();

@@ -61,6 +61,7 @@ struct EstimatorStatistics {
   std::size_t frames = 0;            ///< feature frames estimated (every mode)
   std::size_t keyframes = 0;         ///< frames kept as keyframes
   std::size_t solves = 0;
+  std::size_t solver_iterations = 0;  ///< Levenberg-Marquardt iterations over all solves
   std::size_t marginalizations = 0;
   std::size_t marginalization_failures = 0;  ///< prior dropped, gauge pinned instead
   /// joint: 1 once T_ENU_W was initialized from the fixes; decoupled: successful registrations
