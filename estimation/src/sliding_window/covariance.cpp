@@ -85,7 +85,7 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     using JMap = Eigen::Map<RowMajor>;
     std::vector<double> r;
     std::vector<std::vector<double>> ambient, tangent;
-    std::vector<int> tangent_cols;
+    std::vector<int> tangent_cols, state_offset, state_size, landmark_of;
     std::vector<double*> jacobian_ptrs;
     // The pose blocks' d(ambient)/d(tangent), once per block.
     std::unordered_map<const double*, Eigen::Matrix<double, 7, 6, Eigen::RowMajor>> plus;
@@ -97,11 +97,21 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
       const std::size_t nb = res.blocks.size();
       if (ambient.size() < nb) ambient.resize(nb), tangent.resize(nb);
       tangent_cols.assign(nb, 0);
+      state_offset.assign(nb, -1);
+      state_size.assign(nb, 0);
+      landmark_of.assign(nb, -1);
       jacobian_ptrs.assign(nb, nullptr);
       bool any = false;
       for (std::size_t i = 0; i < nb; ++i) {
         const double* b = res.blocks[i];
-        if (!columns.count(b) && !landmark_index.count(b)) continue;  // held constant
+        if (const auto c = columns.find(b); c != columns.end()) {
+          state_offset[i] = c->second.offset;
+          state_size[i] = c->second.size;
+        } else if (const auto l = landmark_index.find(b); l != landmark_index.end()) {
+          landmark_of[i] = static_cast<int>(l->second);
+        } else {
+          continue;  // held constant
+        }
         ambient[i].resize(static_cast<std::size_t>(rows * res.cost->parameter_block_sizes()[i]));
         jacobian_ptrs[i] = ambient[i].data();
         any = true;
@@ -136,32 +146,30 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
           tangent_cols[i] = cols;
         }
       }
-      // Accumulate J_i^T J_j over the pairs of blocks.
+      // Accumulate J_i^T J_j over the pairs of blocks (coefficient-wise products: the blocks are small).
       for (std::size_t i = 0; i < nb; ++i) {
         if (!jacobian_ptrs[i]) continue;
         const JMap Ti(tangent[i].data(), rows, tangent_cols[i]);
-        const auto ci = columns.find(res.blocks[i]);
-        const auto li = landmark_index.find(res.blocks[i]);
+        if (landmark_of[i] >= 0) {
+          landmarks[static_cast<std::size_t>(landmark_of[i])].H_ll.topLeftCorner(landmark_size, landmark_size) +=
+              Ti.transpose().lazyProduct(Ti);
+          continue;
+        }
         for (std::size_t j = 0; j < nb; ++j) {
           if (!jacobian_ptrs[j]) continue;
           const JMap Tj(tangent[j].data(), rows, tangent_cols[j]);
-          const auto cj = columns.find(res.blocks[j]);
-          if (ci != columns.end() && cj != columns.end()) {
-            S.block(ci->second.offset, cj->second.offset, Ti.cols(), Tj.cols()).noalias() += Ti.transpose() * Tj;
-          } else if (li != landmark_index.end() && j == i) {
-            landmarks[li->second].H_ll.topLeftCorner(landmark_size, landmark_size).noalias() += Ti.transpose() * Ti;
-          } else if (ci != columns.end() && cj == columns.end()) {
-            const auto lj = landmark_index.find(res.blocks[j]);
-            if (lj == landmark_index.end()) continue;
-            auto& blocks = landmarks[lj->second].H_sl;
-            const int offset = ci->second.offset;
-            auto it = std::find_if(blocks.begin(), blocks.end(), [&](const auto& x) { return x.first == offset; });
-            if (it == blocks.end()) {
-              blocks.emplace_back(offset, Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 15, 3>::Zero(ci->second.size, 3));
-              it = std::prev(blocks.end());
-            }
-            it->second.leftCols(landmark_size).noalias() += Ti.transpose() * Tj;
+          if (state_offset[j] >= 0) {
+            S.block(state_offset[i], state_offset[j], Ti.cols(), Tj.cols()) += Ti.transpose().lazyProduct(Tj);
+            continue;
           }
+          auto& blocks = landmarks[static_cast<std::size_t>(landmark_of[j])].H_sl;
+          const int offset = state_offset[i];
+          auto it = std::find_if(blocks.begin(), blocks.end(), [&](const auto& x) { return x.first == offset; });
+          if (it == blocks.end()) {
+            blocks.emplace_back(offset, Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 15, 3>::Zero(state_size[i], 3));
+            it = std::prev(blocks.end());
+          }
+          it->second.leftCols(landmark_size) += Ti.transpose().lazyProduct(Tj);
         }
       }
     }
