@@ -497,16 +497,15 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
-  const std::unique_ptr<ceres::Manifold> manifold = make_pose_manifold();
   VisualCount count;
   std::vector<double*> fixed;
   const std::vector<Residual> residuals = build_residuals(&count, &fixed);
   for (auto& s : window) {
-    problem.AddParameterBlock(s->pose, kPoseSize, manifold.get());
+    problem.AddParameterBlock(s->pose, kPoseSize, pose_manifold.get());
     problem.AddParameterBlock(s->speed_bias, kSpeedBiasSize);
     if (!cfg.use_imu) problem.SetParameterBlockConstant(s->speed_bias);
   }
-  problem.AddParameterBlock(extrinsic, kPoseSize, manifold.get());
+  problem.AddParameterBlock(extrinsic, kPoseSize, pose_manifold.get());
   if (!cfg.estimate_extrinsic) problem.SetParameterBlockConstant(extrinsic);
   for (const auto& r : residuals) problem.AddResidualBlock(r.cost.get(), r.loss.get(), r.blocks);
   for (double* lambda : fixed) problem.SetParameterBlockConstant(lambda);
@@ -675,10 +674,7 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
     return *last_estimate;
   }
   if (t <= window.back()->t) throw Error("estimator: feature frames must have increasing time stamps");
-  return add_frame(frame, t);
-}
 
-StateEstimate SlidingWindowEstimator::Impl::add_frame(const FeatureFrame& frame, Timestamp t) {
   const WindowState& last_kf = *window.back();
   auto s = std::make_unique<WindowState>();
   s->id = next_id++;

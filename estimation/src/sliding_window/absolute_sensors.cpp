@@ -62,12 +62,16 @@ void SlidingWindowEstimator::Impl::register_gps(const WindowState& s) {
   enu_registered = true;
   // The fixes used here are not factors in the window: their information enters as a Gaussian
   // prior on T_ENU_W (in the marginalization prior's square-root form, J = L^-1, r = 0).
-  const Mat4 P = alignment_covariance(r);
-  const Eigen::LLT<Mat4> llt(0.5 * (P + P.transpose()));
-  if (llt.info() != Eigen::Success) return;
+  if (!set_enu_prior(alignment_covariance(r))) return;
+  ++stats.gps_registrations;
+}
+
+bool SlidingWindowEstimator::Impl::set_enu_prior(const Mat4& covariance) {
+  const Eigen::LLT<Mat4> llt(0.5 * (covariance + covariance.transpose()));
+  if (llt.info() != Eigen::Success) return false;
   enu_prior = std::make_shared<MarginalizationPrior>(gaussian_block_prior(
       enu_alignment, BlockKind::kEuclidean, kEnuAlignmentSize, llt.matrixL().solve(Mat4::Identity())));
-  ++stats.gps_registrations;
+  return true;
 }
 
 GpsRegistration SlidingWindowEstimator::Impl::registration(const std::vector<GpsRegistrationPair>& pairs) const {

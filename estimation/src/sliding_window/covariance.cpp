@@ -90,8 +90,8 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     // The pose blocks' d(ambient)/d(tangent), once per block.
     std::unordered_map<const double*, Eigen::Matrix<double, 7, 6, Eigen::RowMajor>> plus;
     for (const auto& w : window)
-      if (columns.count(w->pose)) manifold_for_covariance->PlusJacobian(w->pose, plus[w->pose].data());
-    if (columns.count(extrinsic)) manifold_for_covariance->PlusJacobian(extrinsic, plus[extrinsic].data());
+      if (columns.count(w->pose)) pose_manifold->PlusJacobian(w->pose, plus[w->pose].data());
+    if (columns.count(extrinsic)) pose_manifold->PlusJacobian(extrinsic, plus[extrinsic].data());
     for (const Residual& res : residuals) {
       const int rows = res.cost->num_residuals();
       const std::size_t nb = res.blocks.size();

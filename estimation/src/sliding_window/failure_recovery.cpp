@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <vector>
 
-#include <Eigen/Cholesky>
-
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "impl.hpp"
@@ -145,11 +143,7 @@ StateEstimate SlidingWindowEstimator::Impl::recover(const FeatureFrame& frame, c
   if (enu_registered && good.T_ENU_W && good.T_ENU_W_covariance) {
     enu_alignment[0] = yaw_of(good.T_ENU_W->q);
     for (int i = 0; i < 3; ++i) enu_alignment[1 + i] = good.T_ENU_W->t[i];
-    const Mat4 C = *good.T_ENU_W_covariance;
-    const Eigen::LLT<Mat4> llt(0.5 * (C + C.transpose()));
-    if (llt.info() == Eigen::Success)
-      enu_prior = std::make_shared<MarginalizationPrior>(gaussian_block_prior(
-          enu_alignment, BlockKind::kEuclidean, kEnuAlignmentSize, llt.matrixL().solve(Mat4::Identity())));
+    set_enu_prior(*good.T_ENU_W_covariance);
   }
   gaussian_solves = kRestartGaussianSolves + 1;  // the restarted frame's own solve has no visual factor
   restarting = true;

@@ -161,6 +161,8 @@ struct SlidingWindowEstimator::Impl {
   double mag_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
   std::shared_ptr<MarginalizationPrior> mag_prior;
 
+  // The poses' manifold, for the solve's problem and the covariance's tangent-space Jacobians.
+  std::shared_ptr<ceres::Manifold> pose_manifold{make_pose_manifold()};
   std::deque<std::unique_ptr<WindowState>> window;  // oldest first; addresses stay put
   FeatureTrackStore tracks;
   std::vector<ImuSample> imu;
@@ -177,7 +179,7 @@ struct SlidingWindowEstimator::Impl {
   // Solves left without the robust loss after a restart: the loss presumes a good first guess,
   // which the restarted window's velocity is not.
   int gaussian_solves = 0;
-  // Estimates vision confirmed (failure.*), the newest restart_max_gap_s + a velocity baseline.
+  // Estimates vision confirmed (failure.*), the newest restart_max_gap_s + the restart's back-off.
   std::deque<StateEstimate> confirmed;
   void confirm(const StateEstimate& e);
   // Inlier shares of the last second's frames (those with enough visual residual blocks).
@@ -194,6 +196,8 @@ struct SlidingWindowEstimator::Impl {
   void attach_gps(WindowState& s);
   void start_gps_bias(WindowState& s);
   void register_gps(const WindowState& s);
+  /// T_ENU_W's Gaussian prior from a covariance of [yaw, t] (false when not positive definite).
+  bool set_enu_prior(const Mat4& covariance);
   void reregister_gps(const WindowState& s);
   GpsRegistration registration(const std::vector<GpsRegistrationPair>& pairs) const;
   void attach_mag(WindowState& s);
@@ -204,8 +208,6 @@ struct SlidingWindowEstimator::Impl {
 
   std::vector<StateEstimate> process(const SensorEvent& event);
   StateEstimate handle_frame(const FeatureFrame& frame);
-  /// A new state for the frame, propagated from the newest keyframe, then solve_newest.
-  StateEstimate add_frame(const FeatureFrame& frame, Timestamp t);
   /// After a failed solve of `frame` (failure_recovery.cpp): restart from the last good estimate
   /// and solve the frame again, or re-initialize in a new map frame when that is not possible.
   StateEstimate recover(const FeatureFrame& frame, const std::string& why);
@@ -243,8 +245,6 @@ struct SlidingWindowEstimator::Impl {
   /// Solves the window; with `covariance`, also the newest state's covariance (nullopt on failure).
   VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
   std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem, const std::vector<Residual>& residuals);
-  // The pose manifold the covariance maps pose Jacobians to the tangent space with.
-  std::shared_ptr<ceres::Manifold> manifold_for_covariance{make_pose_manifold()};
   void accumulate_residual_statistics(const std::vector<Residual>& residuals);
   void count_newest_inliers(const std::vector<Residual>& residuals, VisualCount& count) const;
   void remove_failed_tracks();
