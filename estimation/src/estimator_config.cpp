@@ -122,6 +122,11 @@ EstimatorConfig read_estimator_config(const Config& c) {
       solver_names, solvers);
   e.max_iterations = static_cast<int>(c.get_int("estimator.solver.max_iterations", e.max_iterations, 1, 1000));
   e.max_solver_time_s = c.get_double("estimator.solver.max_time", e.max_solver_time_s, {0, 60});
+  static const char* const non_keyframe_names[] = {"window", "newest"};
+  static const NonKeyframeSolve non_keyframe_solves[] = {NonKeyframeSolve::kWindow, NonKeyframeSolve::kNewest};
+  e.non_keyframe_solve = parse_enum(c.get_string("estimator.solver.non_keyframes", to_string(e.non_keyframe_solve),
+                                                 {"window", "newest"}),
+                                    non_keyframe_names, non_keyframe_solves);
 
   e.marginalization = c.get_bool("estimator.marginalization", e.marginalization);
   e.residual_diagnostics = c.get_bool("estimator.diagnostics.residuals", e.residual_diagnostics);
@@ -223,6 +228,7 @@ std::string to_string(LeavingAnchorPolicy policy) {
   return "reuse";
 }
 std::string to_string(AnchorBearing bearing) { return bearing == AnchorBearing::kFixed ? "fixed" : "estimated"; }
+std::string to_string(NonKeyframeSolve solve) { return solve == NonKeyframeSolve::kWindow ? "window" : "newest"; }
 std::string to_string(Depth3dCovariance model) { return model == Depth3dCovariance::kFull ? "full" : "paper"; }
 
 }  // namespace navaid::estimation

@@ -490,7 +490,7 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
   return out;
 }
 
-VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>* covariance) {
+VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>* covariance, bool newest_only) {
   ceres::Problem::Options po;
   // The problem borrows the factors, losses and manifold; they live in this scope.
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -512,8 +512,21 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   if (!cfg.use_imu && !state_prior && (!marginal_prior || marginal_prior->empty()))
     problem.SetParameterBlockConstant(window.front()->pose);  // without IMU nothing else holds the gauge
 
+  // Motion-only: every other block held where the last solve left it, released again for the
+  // covariance (which is the whole window's).
+  std::vector<double*> held;
+  if (newest_only) {
+    std::vector<double*> blocks;
+    problem.GetParameterBlocks(&blocks);
+    for (double* b : blocks)
+      if (b != window.back()->pose && b != window.back()->speed_bias && !problem.IsParameterBlockConstant(b)) {
+        problem.SetParameterBlockConstant(b);
+        held.push_back(b);
+      }
+  }
+
   ceres::Solver::Options so;
-  so.linear_solver_type = solver_type(cfg.linear_solver);
+  so.linear_solver_type = newest_only ? ceres::DENSE_QR : solver_type(cfg.linear_solver);
   so.max_num_iterations = cfg.max_iterations;
   if (cfg.max_solver_time_s > 0) so.max_solver_time_in_seconds = cfg.max_solver_time_s;
   so.num_threads = 1;
@@ -534,6 +547,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
     const sliding_window::GatedLoss plain(loss.get(), robust_loss.get(), gaussian_solves > 0, /*gaussian=*/true);
     ceres::Solve(so, &problem, &summary);
   }
+  for (double* b : held) problem.SetParameterBlockVariable(b);
   if (gaussian_solves > 0) --gaussian_solves;
   ++stats.solves;
   stats.solver_iterations += summary.iterations.size() > 0 ? summary.iterations.size() - 1 : 0;
@@ -706,7 +720,10 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   initialize_tracks();
 
   std::optional<NewestCovariance> c;
-  const VisualCount count = solve(cfg.covariance_method != CovarianceMethod::kOff ? &c : nullptr);
+  // A non-keyframe is dropped after its solve: with non_keyframes=newest it moves alone (a restarted
+  // window, still converging, always solves whole).
+  const bool newest_only = !keyframe && cfg.non_keyframe_solve == NonKeyframeSolve::kNewest && gaussian_solves == 0;
+  const VisualCount count = solve(cfg.covariance_method != CovarianceMethod::kOff ? &c : nullptr, newest_only);
   remove_failed_tracks();
   if (cfg.use_gps && cfg.gps_mode == GpsMode::kJoint) register_gps(newest);
   if (cfg.use_gps && cfg.gps_mode == GpsMode::kDecoupled) reregister_gps(newest);

@@ -366,6 +366,26 @@ TEST(SlidingWindowEstimator, GpsFactorsPutTheTrackIntoEnu) {
   RecordProperty("fix_rmse_cm", static_cast<int>(std::lround(fixes * 100)));
 }
 
+TEST(SlidingWindowEstimator, NonKeyframesSolvedAloneKeepTheAccuracyWithFewerIterations) {
+  // non_keyframes=newest moves a frame that will be dropped alone against the window (motion-only);
+  // the window itself is refined at keyframes. Its covariance is still the whole window's.
+  const auto& rec = noisy_walk();
+  const auto window = testing::run_estimator(rec, {"estimator.solver.non_keyframes=window"});
+  const auto newest = testing::run_estimator(rec, {"estimator.solver.non_keyframes=newest"});
+  ASSERT_EQ(window.estimates.size(), newest.estimates.size());
+  EXPECT_EQ(window.stats.keyframes, newest.stats.keyframes);
+  const Errors w = start_aligned_errors(window.estimates, rec.groundtruth);
+  const Errors n = start_aligned_errors(newest.estimates, rec.groundtruth);
+  EXPECT_LT(n.rmse_m, 1.25 * w.rmse_m + 1e-3) << "newest " << n.rmse_m << " m, window " << w.rmse_m << " m";
+  EXPECT_NE(n.rmse_m, w.rmse_m) << "the switch changed nothing";
+  EXPECT_GT(n.mean_nees, 1.0);
+  EXPECT_LT(n.mean_nees, 9.0);
+  // A motion-only solve has 15 unknowns and starts at the IMU prediction: few iterations.
+  EXPECT_LT(newest.stats.solver_iterations, window.stats.solver_iterations * 3 / 4);
+  RecordProperty("rmse_um_window", static_cast<int>(std::lround(w.rmse_m * 1e6)));
+  RecordProperty("rmse_um_newest", static_cast<int>(std::lround(n.rmse_m * 1e6)));
+}
+
 TEST(EstimatorConfig, DefaultsFollowThePaper) {
   const EstimatorConfig c = read_estimator_config(Config::parse("{}"));
   EXPECT_EQ(c.window_size, 10);
@@ -382,6 +402,7 @@ TEST(EstimatorConfig, BadValuesNameTheKey) {
            {"estimator.window_size=1", "estimator.window_size"},
            {"estimator.loss.type=tukey", "estimator.loss.type"},
            {"estimator.solver.linear_solver=cgnr", "estimator.solver.linear_solver"},
+           {"estimator.solver.non_keyframes=some", "estimator.solver.non_keyframes"},
            {"estimator.features.far_threshold=-1", "estimator.features.far_threshold"},
            {"estimator.features.far_policy=maybe", "estimator.features.far_policy"},
            {"estimator.factors.imu=perhaps", "estimator.factors.imu"},

@@ -12,6 +12,31 @@
 
 namespace navaid::estimation {
 
+namespace {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using JMap = Eigen::Map<RowMajor>;
+template <int Cols>
+using FixedColsMap = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Cols, Eigen::RowMajor>>;
+
+// dst += A^T B for the rows x ca and rows x cb row-major blocks at a and b: fixed-size kernels for
+// the blocks of nearly every term (pose tangents of 6, landmarks of 3), generic otherwise.
+template <typename Dst>
+void add_At_B(Dst&& dst, const double* a, int ca, const double* b, int cb, int rows) {
+  if (ca == 6 && cb == 6) {
+    dst.template topLeftCorner<6, 6>() += FixedColsMap<6>(a, rows, 6).transpose().lazyProduct(FixedColsMap<6>(b, rows, 6));
+  } else if (ca == 6 && cb == 3) {
+    dst.template topLeftCorner<6, 3>() += FixedColsMap<6>(a, rows, 6).transpose().lazyProduct(FixedColsMap<3>(b, rows, 3));
+  } else if (ca == 3 && cb == 3) {
+    dst.template topLeftCorner<3, 3>() += FixedColsMap<3>(a, rows, 3).transpose().lazyProduct(FixedColsMap<3>(b, rows, 3));
+  } else {
+    const Eigen::Map<const RowMajor> A(a, rows, ca), B(b, rows, cb);
+    dst.topLeftCorner(ca, cb) += A.transpose().lazyProduct(B);
+  }
+}
+
+}  // namespace
+
 std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(ceres::Problem& problem,
                                                                              const std::vector<Residual>& residuals) {
   const WindowState& s = *window.back();
@@ -81,8 +106,6 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(state_cols, state_cols);
 
     // Scratch reused across residual blocks (no allocation per block once grown).
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    using JMap = Eigen::Map<RowMajor>;
     std::vector<double> r;
     std::vector<std::vector<double>> ambient, tangent;
     std::vector<int> tangent_cols, state_offset, state_size, landmark_of;
@@ -139,7 +162,9 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
         const auto p = plus.find(res.blocks[i]);
         if (p != plus.end()) {
           tangent[i].resize(static_cast<std::size_t>(rows * kPoseTangentSize));
-          JMap(tangent[i].data(), rows, kPoseTangentSize).noalias() = J * p->second;
+          Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, kPoseTangentSize, Eigen::RowMajor>>(tangent[i].data(), rows,
+                                                                                          kPoseTangentSize)
+              .noalias() = FixedColsMap<kPoseSize>(J.data(), rows, kPoseSize).lazyProduct(p->second);
           tangent_cols[i] = kPoseTangentSize;
         } else {
           tangent[i].swap(ambient[i]);
@@ -149,17 +174,18 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
       // Accumulate J_i^T J_j over the pairs of blocks (coefficient-wise products: the blocks are small).
       for (std::size_t i = 0; i < nb; ++i) {
         if (!jacobian_ptrs[i]) continue;
-        const JMap Ti(tangent[i].data(), rows, tangent_cols[i]);
+        const double* Ti = tangent[i].data();
+        const int ci = tangent_cols[i];
         if (landmark_of[i] >= 0) {
-          landmarks[static_cast<std::size_t>(landmark_of[i])].H_ll.topLeftCorner(landmark_size, landmark_size) +=
-              Ti.transpose().lazyProduct(Ti);
+          add_At_B(landmarks[static_cast<std::size_t>(landmark_of[i])].H_ll, Ti, ci, Ti, ci, rows);
           continue;
         }
         for (std::size_t j = 0; j < nb; ++j) {
           if (!jacobian_ptrs[j]) continue;
-          const JMap Tj(tangent[j].data(), rows, tangent_cols[j]);
+          const double* Tj = tangent[j].data();
+          const int cj = tangent_cols[j];
           if (state_offset[j] >= 0) {
-            S.block(state_offset[i], state_offset[j], Ti.cols(), Tj.cols()) += Ti.transpose().lazyProduct(Tj);
+            add_At_B(S.block(state_offset[i], state_offset[j], ci, cj), Ti, ci, Tj, cj, rows);
             continue;
           }
           auto& blocks = landmarks[static_cast<std::size_t>(landmark_of[j])].H_sl;
@@ -169,19 +195,35 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
             blocks.emplace_back(offset, Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 15, 3>::Zero(state_size[i], 3));
             it = std::prev(blocks.end());
           }
-          it->second.leftCols(landmark_size) += Ti.transpose().lazyProduct(Tj);
+          add_At_B(it->second, Ti, ci, Tj, cj, rows);
         }
       }
     }
-    for (const LandmarkInformation& l : landmarks) {
-      const Eigen::MatrixXd H_ll = l.H_ll.topLeftCorner(landmark_size, landmark_size);
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(H_ll);
+    // H_sl H_ll^-1 H_ls = W W^T with W = H_sl L^-T (H_ll = L L^T): each pair of blocks once, the
+    // mirror block by transposition. A 1-dim landmark is padded to 3 (unit diagonal, zero columns).
+    std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 15, 3>> W;
+    for (LandmarkInformation& l : landmarks) {
+      for (int k = landmark_size; k < 3; ++k) l.H_ll(k, k) = 1.0;
+      const Eigen::LLT<Eigen::Matrix3d> llt(l.H_ll);
       // An unobserved landmark carries no information.
-      if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12)) continue;
-      for (const auto& [oa, Ba] : l.H_sl) {
-        const Eigen::MatrixXd Xa = ldlt.solve(Eigen::MatrixXd(Ba.leftCols(landmark_size).transpose()));
-        for (const auto& [ob, Bb] : l.H_sl)
-          S.block(ob, oa, Bb.rows(), Ba.rows()) -= Bb.leftCols(landmark_size) * Xa;
+      if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > 1e-12)) continue;
+      W.resize(l.H_sl.size());
+      for (std::size_t a = 0; a < l.H_sl.size(); ++a)
+        W[a] = llt.matrixL().solve(l.H_sl[a].second.transpose()).transpose();
+      for (std::size_t a = 0; a < l.H_sl.size(); ++a) {
+        const int oa = l.H_sl[a].first;
+        for (std::size_t b = a; b < l.H_sl.size(); ++b) {
+          const int ob = l.H_sl[b].first;
+          if (W[a].rows() == 6 && W[b].rows() == 6) {
+            const Eigen::Matrix<double, 6, 6> P = W[b].topRows<6>() * W[a].topRows<6>().transpose();
+            S.block<6, 6>(ob, oa) -= P;
+            if (a != b) S.block<6, 6>(oa, ob) -= P.transpose();
+          } else {
+            const Eigen::MatrixXd P = W[b] * W[a].transpose();
+            S.block(ob, oa, P.rows(), P.cols()) -= P;
+            if (a != b) S.block(oa, ob, P.cols(), P.rows()) -= P.transpose();
+          }
+        }
       }
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));

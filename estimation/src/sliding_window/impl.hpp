@@ -242,8 +242,9 @@ struct SlidingWindowEstimator::Impl {
   int landmark_block_size() const { return bearing_estimated() ? 3 : 1; }
 
   std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* fixed_inverse_depths);
-  /// Solves the window; with `covariance`, also the newest state's covariance (nullopt on failure).
-  VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr);
+  /// Solves the window (with `newest_only`, the newest state alone, the rest held); with
+  /// `covariance`, also the newest state's covariance from the whole window (nullopt on failure).
+  VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr, bool newest_only = false);
   std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem, const std::vector<Residual>& residuals);
   void accumulate_residual_statistics(const std::vector<Residual>& residuals);
   void count_newest_inliers(const std::vector<Residual>& residuals, VisualCount& count) const;

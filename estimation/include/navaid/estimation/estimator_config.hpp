@@ -33,6 +33,10 @@ enum class CovarianceMethod { kSchur, kCeres, kOff };
 /// solve (Triggs-corrected, as ceres::Covariance), or at full Gaussian weight unless beyond the
 /// outlier gate (then not at all).
 enum class CovarianceWeights { kRobust, kInliers };
+/// What a frame that will not be kept (a non-keyframe) solves: the whole window with it, as a
+/// keyframe does ("window"), or its own state alone against the window held where the last solve
+/// left it ("newest": motion-only, the window's keyframes and landmarks are refined at keyframes).
+enum class NonKeyframeSolve { kWindow, kNewest };
 /// How GPS enters (factors.gps): T_ENU_W and GPS factors in the window ("joint"), or the VIO window
 /// alone with T_ENU_W re-registered over the fixes at every fix (eLabrador, "decoupled").
 enum class GpsMode { kJoint, kDecoupled };
@@ -100,6 +104,7 @@ struct EstimatorConfig {
   LinearSolverKind linear_solver = LinearSolverKind::kDenseSchur;
   int max_iterations = 8;
   double max_solver_time_s = 0;  ///< 0: no limit (a limit makes results depend on the machine)
+  NonKeyframeSolve non_keyframe_solve = NonKeyframeSolve::kWindow;
 
   bool marginalization = true;
   /// Accumulate whitened residual statistics per factor type after every solve (costs one more
@@ -181,5 +186,6 @@ std::string to_string(LeavingAnchorPolicy policy);
 std::string to_string(AnchorBearing bearing);
 std::string to_string(GpsMode mode);
 std::string to_string(InitializationMethod method);
+std::string to_string(NonKeyframeSolve solve);
 
 }  // namespace navaid::estimation
