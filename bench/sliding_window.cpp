@@ -1,6 +1,7 @@
 // Cost of the sliding-window estimator: one optimization of a full window (10 keyframes, ~150
-// features tracked per frame, simulated lab-walk-1 with the hand mount), per linear solver, and
-// one whole frame (solve, covariance of the newest state, marginalization when it is a keyframe).
+// features tracked per frame, simulated lab-walk-1 with the hand mount), per linear solver; one
+// whole frame (solve, covariance of the newest state, marginalization when it is a keyframe) and
+// the next 2 s of frames, with non-keyframes solved with the window or alone.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -35,15 +36,16 @@ const io::Recording& recording() {
   return rec;
 }
 
-// The estimator after 7 s of the walk (window full), and the events of the next second.
+// The estimator after 7 s of the walk (window full), and the events of the 2 s after.
 struct Warm {
   std::unique_ptr<SlidingWindowEstimator> estimator;
   std::vector<SensorEvent> next_events;
 };
 
-Warm warm(const std::string& solver) {
+Warm warm(const std::string& solver, const std::string& non_keyframes = "window") {
   const auto& rec = recording();
-  const Config c = Config::parse("{}", "<bench>", {"estimator.solver.linear_solver=" + solver});
+  const Config c = Config::parse("{}", "<bench>", {"estimator.solver.linear_solver=" + solver,
+                                                   "estimator.solver.non_keyframes=" + non_keyframes});
   Warm w;
   w.estimator = std::make_unique<SlidingWindowEstimator>(rec.calibration, read_estimator_config(c));
   io::SensorEventStream stream(rec);
@@ -76,9 +78,9 @@ BENCHMARK_CAPTURE(BM_WindowOptimization, sparse_schur, std::string("sparse_schur
 BENCHMARK_CAPTURE(BM_WindowOptimization, sparse_normal_cholesky, std::string("sparse_normal_cholesky"))
     ->Unit(benchmark::kMillisecond);
 
-// One frame end to end: the events up to and including the next estimate.
-void BM_WholeFrame(benchmark::State& state) {
-  const Warm w = warm("dense_schur");
+// One frame end to end: the events up to and including the next estimate (a non-keyframe here).
+void BM_WholeFrame(benchmark::State& state, const std::string& non_keyframes) {
+  const Warm w = warm("dense_schur", non_keyframes);
   for (auto _ : state) {
     state.PauseTiming();
     SlidingWindowEstimator copy(*w.estimator);
@@ -87,6 +89,27 @@ void BM_WholeFrame(benchmark::State& state) {
       if (!copy.process(e).empty()) break;
   }
 }
-BENCHMARK(BM_WholeFrame)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WholeFrame, non_keyframes_window, std::string("window"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WholeFrame, non_keyframes_newest, std::string("newest"))->Unit(benchmark::kMillisecond);
+
+// The 2 s after the warm-up (60 frames, keyframes and others as they come): time per frame is the
+// iteration time over the "frames" counter.
+void BM_TwoSeconds(benchmark::State& state, const std::string& non_keyframes) {
+  const Warm w = warm("dense_schur", non_keyframes);
+  std::size_t frames = 0, keyframes = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    SlidingWindowEstimator copy(*w.estimator);
+    const std::size_t keyframes_before = copy.statistics().keyframes;
+    state.ResumeTiming();
+    frames = 0;
+    for (const auto& e : w.next_events) frames += copy.process(e).size();
+    keyframes = copy.statistics().keyframes - keyframes_before;
+  }
+  state.counters["frames"] = static_cast<double>(frames);
+  state.counters["keyframes"] = static_cast<double>(keyframes);
+}
+BENCHMARK_CAPTURE(BM_TwoSeconds, non_keyframes_window, std::string("window"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_TwoSeconds, non_keyframes_newest, std::string("newest"))->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -534,6 +534,9 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   // quarters of the solves at max_iterations for sub-millimetre changes): measured -11 to -28 %
   // estimator time, ATE within +-3 mm on lab walks (docs/estimator.md, "navaid run").
   so.function_tolerance = 1e-4;
+  // A motion-only solve is small and cheap: to convergence (1e-4 left it at the IMU prediction
+  // in half the frames, the first step's gain on the frame's own residuals being below that).
+  if (newest_only) so.function_tolerance = 1e-8;
   if (gaussian_solves > 0) {
     // A restarted window: few states, a velocity far from its estimate (Levenberg-Marquardt moves
     // it a fraction of the way per iteration): run to convergence.

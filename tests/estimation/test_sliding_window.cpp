@@ -395,6 +395,7 @@ TEST(EstimatorConfig, DefaultsFollowThePaper) {
   EXPECT_EQ(c.far_policy, FarFeaturePolicy::kFree);
   EXPECT_TRUE(c.use_depth && c.use_imu && c.use_reprojection && c.use_inverse_depth && c.use_depth_3d);
   EXPECT_TRUE(c.marginalization);
+  EXPECT_EQ(c.non_keyframe_solve, NonKeyframeSolve::kNewest);
 }
 
 TEST(EstimatorConfig, BadValuesNameTheKey) {

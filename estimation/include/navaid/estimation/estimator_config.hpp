@@ -104,7 +104,7 @@ struct EstimatorConfig {
   LinearSolverKind linear_solver = LinearSolverKind::kDenseSchur;
   int max_iterations = 8;
   double max_solver_time_s = 0;  ///< 0: no limit (a limit makes results depend on the machine)
-  NonKeyframeSolve non_keyframe_solve = NonKeyframeSolve::kWindow;
+  NonKeyframeSolve non_keyframe_solve = NonKeyframeSolve::kNewest;
 
   bool marginalization = true;
   /// Accumulate whitened residual statistics per factor type after every solve (costs one more
