@@ -6,7 +6,7 @@ namespace navaid::estimation::detail {
 
 AnchoredPoint transfer_anchored_point(const double* pose_anchor, const double* pose_target,
                                       const double* extrinsic, double inverse_depth, const Vec3& m_anchor,
-                                      bool with_jacobians) {
+                                      bool with_jacobians, bool with_extrinsic) {
   const SE3 T_wa = pose_from_block(pose_anchor);
   const SE3 T_wt = pose_from_block(pose_target);
   const SE3 T_bc = pose_from_block(extrinsic);
@@ -25,11 +25,15 @@ AnchoredPoint transfer_anchored_point(const double* pose_anchor, const double* p
   out.d_anchor.rightCols<3>() = -R_ct_w * R_wa * hat(P_ba);
   out.d_target.leftCols<3>() = -R_ct_w;
   out.d_target.rightCols<3>() = R_bc.transpose() * hat(P_bt);
-  // T_bc enters twice: placing the point in the anchor body and leaving the target body.
   const Mat3 R_ct_ba = R_ct_w * R_wa;
-  out.d_extrinsic.leftCols<3>() = R_ct_ba - R_bc.transpose();
-  out.d_extrinsic.rightCols<3>() = hat(out.P_ct) - R_ct_ba * R_bc * hat(P_ca);
   const Mat3 R_ct_ca = R_ct_ba * R_bc;
+  if (with_extrinsic) {
+    // T_bc enters twice: placing the point in the anchor body and leaving the target body.
+    out.d_extrinsic.leftCols<3>() = R_ct_ba - R_bc.transpose();
+    out.d_extrinsic.rightCols<3>() = hat(out.P_ct) - R_ct_ca * hat(P_ca);
+  } else {
+    out.d_extrinsic.setZero();
+  }
   out.d_lambda = R_ct_ca * (-m_anchor / (inverse_depth * inverse_depth));
   out.d_m_anchor = R_ct_ca.leftCols<2>() / inverse_depth;
   return out;

@@ -21,9 +21,11 @@ struct AnchoredPoint {
   Eigen::Matrix<double, 3, 2> d_m_anchor;     ///< d P_ct / d (x_a, y_a)
 };
 
-/// Parameter blocks: 7-double poses (see pose_parametrization.hpp) and the inverse depth.
+/// Parameter blocks: 7-double poses (see pose_parametrization.hpp) and the inverse depth. With
+/// `with_jacobians`, every Jacobian but d_extrinsic, which needs `with_extrinsic` too (the extrinsic
+/// is usually held constant, and Ceres then does not ask for it).
 AnchoredPoint transfer_anchored_point(const double* pose_anchor, const double* pose_target,
                                       const double* extrinsic, double inverse_depth, const Vec3& m_anchor,
-                                      bool with_jacobians);
+                                      bool with_jacobians, bool with_extrinsic);
 
 }  // namespace navaid::estimation::detail

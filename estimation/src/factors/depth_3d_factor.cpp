@@ -49,7 +49,8 @@ bool Depth3dFactor::evaluate_at(double const* const* parameters, const Eigen::Ve
                                 Eigen::Matrix<double, 3, 2>* d_m_target, Eigen::Vector3d* d_depth) const {
   const bool want = jacobians != nullptr || d_m_anchor != nullptr;
   const detail::AnchoredPoint pt = detail::transfer_anchored_point(
-      parameters[0], parameters[1], parameters[2], parameters[3][0], Vec3(m_anchor.x(), m_anchor.y(), 1.0), want);
+      parameters[0], parameters[1], parameters[2], parameters[3][0], Vec3(m_anchor.x(), m_anchor.y(), 1.0), want,
+      jacobians != nullptr && jacobians[2] != nullptr);
   const Vec3& P = pt.P_ct;
   if (!(P.z() > kMinDepth)) return false;
   const Vec3 predicted(P.x(), P.y(), 1.0 / P.z());

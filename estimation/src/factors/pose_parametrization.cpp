@@ -10,7 +10,7 @@ void pose_to_block(const SE3& T, double* block) {
 }
 
 SE3 pose_from_block(const double* block) {
-  return SE3(Eigen::Map<const Quat>(block + 3).normalized(), Vec3(Eigen::Map<const Vec3>(block)));
+  return SE3(Quat(Eigen::Map<const Quat>(block + 3)), Vec3(Eigen::Map<const Vec3>(block)));  // SE3 normalizes q
 }
 
 SE3 enu_alignment_from_block(const double* block) {

@@ -32,7 +32,8 @@ bool ReprojectionFactor::evaluate_at(double const* const* parameters, const Eige
                                      Eigen::Matrix2d* d_m_anchor, Eigen::Matrix2d* d_m_target) const {
   const bool want = jacobians != nullptr || d_m_anchor != nullptr;
   const detail::AnchoredPoint pt = detail::transfer_anchored_point(
-      parameters[0], parameters[1], parameters[2], parameters[3][0], Vec3(m_anchor.x(), m_anchor.y(), 1.0), want);
+      parameters[0], parameters[1], parameters[2], parameters[3][0], Vec3(m_anchor.x(), m_anchor.y(), 1.0), want,
+      jacobians != nullptr && jacobians[2] != nullptr);
   const Vec3& P = pt.P_ct;
   if (!(P.z() > kMinDepth)) return false;
   const double s = sqrt_information_;
