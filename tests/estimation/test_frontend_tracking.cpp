@@ -336,6 +336,29 @@ TEST(FrontendTracking, DeterministicAndTrackIdsStable) {
   EXPECT_GT(after.features.front().track_id, max_id);
 }
 
+TEST(FrontendTracking, KltThreadsChangeNothing) {
+  // The KLT's points are split over klt_threads workers; each point has its own window, so any
+  // split gives the same tracks to the last bit.
+  const Sequence& s = walk();
+  FrontendConfig one, three;
+  one.klt_threads = 1;
+  three.klt_threads = 3;
+  FeatureTracker a(s.camera, one), b(s.camera, three);
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < 8; ++k) {
+    const FeatureFrame fa = k > 0 ? a.track(s.frames[k], R_cur_prev(s, k)) : a.track(s.frames[k]);
+    const FeatureFrame fb = k > 0 ? b.track(s.frames[k], R_cur_prev(s, k)) : b.track(s.frames[k]);
+    ASSERT_EQ(fa.features.size(), fb.features.size()) << "frame " << k;
+    for (std::size_t i = 0; i < fa.features.size(); ++i) {
+      ASSERT_EQ(fa.features[i].track_id, fb.features[i].track_id);
+      ASSERT_EQ(fa.features[i].uv, fb.features[i].uv);
+      ASSERT_EQ(fa.features[i].depth_m, fb.features[i].depth_m);
+    }
+    compared += a.stats().tracked;
+  }
+  EXPECT_GT(compared, 500u);
+}
+
 TEST(FrontendTracking, GyroPredictionKeepsTracksThroughFastRotation) {
   constexpr double kStepDeg = 15.0;  // ~120 px per frame at f = 460 px, beyond KLT's reach
   const Sequence& s = pan(kStepDeg * 3.14159265358979 / 180.0);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <thread>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
@@ -84,6 +85,35 @@ void keep_where(const std::vector<char>& keep, Arrays&... arrays) {
   (arrays.resize(m), ...);
 }
 
+
+// Pyramidal KLT of `from` into `to` (started at `to`), the points split into `threads` contiguous
+// chunks tracked concurrently. Each point is tracked on its own window of the shared read-only
+// pyramids, so the result is the same for any split.
+void track_split(const std::vector<cv::Mat>& from_pyramid, const std::vector<cv::Mat>& to_pyramid,
+                 const std::vector<cv::Point2f>& from, std::vector<cv::Point2f>& to, std::vector<uchar>& status,
+                 cv::Size window, int max_level, const cv::TermCriteria& stop, int threads) {
+  const std::size_t n = from.size();
+  status.assign(n, 0);
+  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads), n / 16));
+  auto run = [&](std::size_t c) {
+    const std::size_t begin = n * c / chunks, end = n * (c + 1) / chunks;
+    if (begin == end) return;
+    const std::vector<cv::Point2f> f(from.begin() + static_cast<std::ptrdiff_t>(begin),
+                                     from.begin() + static_cast<std::ptrdiff_t>(end));
+    std::vector<cv::Point2f> t(to.begin() + static_cast<std::ptrdiff_t>(begin), to.begin() + static_cast<std::ptrdiff_t>(end));
+    std::vector<uchar> st;
+    std::vector<float> err;
+    cv::calcOpticalFlowPyrLK(from_pyramid, to_pyramid, f, t, st, err, window, max_level, stop,
+                             cv::OPTFLOW_USE_INITIAL_FLOW);
+    std::copy(t.begin(), t.end(), to.begin() + static_cast<std::ptrdiff_t>(begin));
+    std::copy(st.begin(), st.end(), status.begin() + static_cast<std::ptrdiff_t>(begin));
+  };
+  std::vector<std::thread> workers;
+  for (std::size_t c = 1; c < chunks; ++c) workers.emplace_back(run, c);
+  run(0);
+  for (auto& w : workers) w.join();
+}
+
 }  // namespace
 
 FeatureTracker::FeatureTracker(std::shared_ptr<const CameraModel> camera, const FrontendConfig& config)
@@ -147,14 +177,13 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
     const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations,
                                 config_.klt_epsilon);
     std::vector<uchar> status, back_status;
-    std::vector<float> error;
-    cv::calcOpticalFlowPyrLK(state_->prev_pyramid, state_->cur_pyramid, prev, cur, status, error, window,
-                             config_.klt_max_level, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+    track_split(state_->prev_pyramid, state_->cur_pyramid, prev, cur, status, window, config_.klt_max_level, stop,
+                config_.klt_threads);
     std::vector<cv::Point2f> back;
     if (config_.forward_backward_check) {
       back = prev;
-      cv::calcOpticalFlowPyrLK(state_->cur_pyramid, state_->prev_pyramid, cur, back, back_status, error, window,
-                               std::min(config_.fb_max_level, config_.klt_max_level), stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+      track_split(state_->cur_pyramid, state_->prev_pyramid, cur, back, back_status, window,
+                  std::min(config_.fb_max_level, config_.klt_max_level), stop, config_.klt_threads);
     }
     const double fb2 = config_.fb_threshold_px * config_.fb_threshold_px;
     for (std::size_t i = 0; i < n; ++i) {

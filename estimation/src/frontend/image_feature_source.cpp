@@ -63,6 +63,7 @@ FrontendConfig read_frontend_config(const Config& c) {
   f.forward_backward_check = c.get_bool("frontend.forward_backward_check", f.forward_backward_check);
   f.fb_threshold_px = get_double("fb_threshold_px", f.fb_threshold_px);
   f.fb_max_level = get_int("fb_max_level", f.fb_max_level);
+  f.klt_threads = get_int("klt_threads", f.klt_threads);
   f.ransac = c.get_bool("frontend.ransac", f.ransac);
   f.ransac_threshold_px = get_double("ransac_threshold_px", f.ransac_threshold_px);
   f.ransac_confidence = get_double("ransac_confidence", f.ransac_confidence);

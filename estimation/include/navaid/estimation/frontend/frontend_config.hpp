@@ -31,6 +31,9 @@ struct FrontendConfig {
   /// Pyramid levels of the backward pass, in [0, 8]. It starts at the original point, so it needs
   /// no coarse levels to converge (VINS-Fusion uses 1); fewer levels halve its cost.
   int fb_max_level = 1;
+  /// Threads a KLT pass splits its points over, in [1, 16]: each point is tracked on its own
+  /// window, so the split changes nothing in the result (OpenCV's global parallelism stays off).
+  int klt_threads = 2;
 
   // Outlier rejection.
   bool ransac = true;              ///< fundamental-matrix RANSAC on undistorted points
