@@ -58,7 +58,7 @@ struct FailureThresholds {
   /// below which vision and the IMU disagree: the solve followed one and rejected the other.
   double min_inlier_fraction = 0.5;
   /// Checked when the newest frame has at least this many visual residual blocks.
-  int min_visual_residuals = 8;
+  int min_visual_residuals = 16;
   /// ... and only after the median share of the last second was at least this.
   double collapse_from = 0.8;
 };
