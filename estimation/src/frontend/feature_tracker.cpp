@@ -85,7 +85,6 @@ void keep_where(const std::vector<char>& keep, Arrays&... arrays) {
   (arrays.resize(m), ...);
 }
 
-
 // Pyramidal KLT of `from` into `to` (started at `to`), the points split into `threads` contiguous
 // chunks tracked concurrently. Each point is tracked on its own window of the shared read-only
 // pyramids, so the result is the same for any split.
