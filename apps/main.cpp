@@ -5,9 +5,11 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "navaid/core/allocator.hpp"
 #include "navaid/core/errors.hpp"
 
 int main(int argc, char** argv) {
+  navaid::keep_freed_memory();
   CLI::App app{"navaid: navigation aids for blind and low-vision people.\n"
                "Reads recordings (navaid, EuRoC/ASL, TUM RGB-D, NMEA captures, TUM trajectories) and simulates new ones."};
   app.set_help_all_flag("--help-all", "Help for every command");

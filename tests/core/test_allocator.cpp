@@ -1,0 +1,35 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+
+#include "navaid/core/allocator.hpp"
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+namespace {
+
+#if defined(__GLIBC__)
+// A frame-sized block (a 640x480 float image) comes from the heap, not from a fresh mapping, and
+// freeing it keeps the memory in the process.
+TEST(KeepFreedMemory, FrameSizedBlocksStayInTheHeap) {
+  ASSERT_TRUE(navaid::keep_freed_memory());
+  constexpr std::size_t kBytes = 640 * 480 * sizeof(float);
+  const struct mallinfo2 before = mallinfo2();
+  void* block = std::malloc(kBytes);
+  ASSERT_NE(block, nullptr);
+  std::memset(block, 1, kBytes);  // touched, as an image is
+  const struct mallinfo2 held = mallinfo2();
+  EXPECT_EQ(held.hblkhd, before.hblkhd) << "the block was mmapped";
+  std::free(block);
+  const struct mallinfo2 after = mallinfo2();
+  EXPECT_GE(after.arena, held.arena) << "the heap was trimmed";
+  EXPECT_GE(after.fordblks, kBytes) << "the freed block is not kept for reuse";
+}
+#else
+TEST(KeepFreedMemory, ReportsThatTheSettingIsUnavailable) { EXPECT_FALSE(navaid::keep_freed_memory()); }
+#endif
+
+}  // namespace
