@@ -147,6 +147,32 @@ class SquareRoot {
   Eigen::MatrixXd vectors_;
 };
 
+// A landmark (tangent 3) seen from poses (tangent 6), the bulk of the first-eliminated blocks:
+// the same complement as the generic path with fixed-size kernels, when its Cholesky factor is
+// well conditioned by SquareRoot's test (else false: the generic path takes the pseudo-inverse).
+bool eliminate_landmark_on_poses(const Eigen::MatrixXd& H_ii, const Eigen::VectorXd& b_i,
+                                 const std::vector<Eigen::MatrixXd>& H_ia, const std::vector<int>& offsets,
+                                 const Marginalizer::Options& options, Eigen::MatrixXd& H, Eigen::VectorXd& b) {
+  const Eigen::Matrix3d A = H_ii;
+  const Eigen::LLT<Eigen::Matrix3d> llt(A);
+  const double norm1 = A.cwiseAbs().colwise().sum().maxCoeff();
+  if (llt.info() != Eigen::Success || !(llt.rcond() > 1e3 * options.relative_eigenvalue_threshold) ||
+      !(llt.rcond() * norm1 > 1e3 * options.absolute_eigenvalue_threshold)) {
+    return false;
+  }
+  const auto L = llt.matrixL();
+  const Eigen::Vector3d w_b = L.solve(Eigen::Vector3d(b_i));
+  thread_local std::vector<Eigen::Matrix<double, 3, 6>> W;
+  W.resize(H_ia.size());
+  for (std::size_t x = 0; x < H_ia.size(); ++x) W[x] = L.solve(Eigen::Matrix<double, 3, 6>(H_ia[x]));
+  for (std::size_t x = 0; x < W.size(); ++x) {
+    b.segment<6>(offsets[x]).noalias() -= W[x].transpose() * w_b;
+    for (std::size_t y = 0; y < W.size(); ++y)
+      H.block<6, 6>(offsets[x], offsets[y]).noalias() -= W[x].transpose() * W[y];
+  }
+  return true;
+}
+
 struct BlockInfo {
   double* address = nullptr;
   BlockKind kind = BlockKind::kEuclidean;
@@ -332,9 +358,29 @@ MarginalizationPrior Marginalizer::marginalize() const {
   }
   const int n = marginal_size + kept_size;
 
-  // 2. Linearize every term in the tangent spaces and accumulate H = J^T J, b = J^T r.
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  // 2. Linearize every term in the tangent spaces and accumulate H = J^T J, b = J^T r: the
+  //    blocks eliminated first keep their own rows (their diagonal block and one block per
+  //    neighbour; no two of them share a term), the rest of H is dense. A window's leaving
+  //    landmarks make H mostly those rows (n ~ 500, rest ~ 80), which a dense n x n would hold
+  //    as 2 MB of mostly zeros.
+  const int rest_n = n - first_size;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(rest_n, rest_n);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(rest_n);
+  struct FirstRows {
+    Eigen::MatrixXd H_ii;
+    Eigen::VectorXd b_i;
+    std::vector<Eigen::MatrixXd> H_ia;  // one per neighbour, in neighbours[i]'s order
+  };
+  std::vector<int> first_slot(infos.size(), -1);
+  std::vector<FirstRows> first_rows(eliminated_first.size());
+  for (std::size_t k = 0; k < eliminated_first.size(); ++k) {
+    const int i = eliminated_first[k];
+    first_slot[i] = static_cast<int>(k);
+    FirstRows& f = first_rows[k];
+    f.H_ii = Eigen::MatrixXd::Zero(infos[i].tangent, infos[i].tangent);
+    f.b_i = Eigen::VectorXd::Zero(infos[i].tangent);
+    for (const int a : neighbours[i]) f.H_ia.push_back(Eigen::MatrixXd::Zero(infos[i].tangent, infos[a].tangent));
+  }
   std::vector<RowMajorMatrix> ambient;
   std::vector<double*> jacobian_pointers;
   std::vector<const double*> parameters;
@@ -385,11 +431,29 @@ MarginalizationPrior Marginalizer::marginalize() const {
     for (std::size_t i = 0; i < count; ++i) {
       const BlockInfo& bi = infos[term_blocks[i]];
       if (bi.constant) continue;
-      b.segment(bi.offset, bi.tangent) += Jtr.segment(term_columns[i], bi.tangent);
+      const int slot = first_slot[term_blocks[i]];
+      if (slot >= 0) {
+        FirstRows& f = first_rows[slot];
+        f.b_i += Jtr.segment(term_columns[i], bi.tangent);
+        const std::vector<int>& around = neighbours[term_blocks[i]];
+        for (std::size_t j = 0; j < count; ++j) {
+          const BlockInfo& bj = infos[term_blocks[j]];
+          if (bj.constant) continue;
+          const auto block = JtJ.block(term_columns[i], term_columns[j], bi.tangent, bj.tangent);
+          if (j == i) {
+            f.H_ii += block;
+          } else {
+            const auto at = std::lower_bound(around.begin(), around.end(), term_blocks[j]);
+            f.H_ia[static_cast<std::size_t>(at - around.begin())] += block;
+          }
+        }
+        continue;
+      }
+      b.segment(bi.offset - first_size, bi.tangent) += Jtr.segment(term_columns[i], bi.tangent);
       for (std::size_t j = 0; j < count; ++j) {
         const BlockInfo& bj = infos[term_blocks[j]];
-        if (bj.constant) continue;
-        H.block(bi.offset, bj.offset, bi.tangent, bj.tangent) +=
+        if (bj.constant || first_slot[term_blocks[j]] >= 0) continue;  // held in that block's rows
+        H.block(bi.offset - first_size, bj.offset - first_size, bi.tangent, bj.tangent) +=
             JtJ.block(term_columns[i], term_columns[j], bi.tangent, bj.tangent);
       }
     }
@@ -400,20 +464,28 @@ MarginalizationPrior Marginalizer::marginalize() const {
   //    First each independent leaving block i on its neighbours' rows and columns (H_mm is block
   //    diagonal there, so this is the same complement, each block's pseudo-inverse its own), then
   //    the remaining leaving blocks densely.
-  for (const int i : eliminated_first) {
-    const BlockInfo& bi = infos[i];
-    const SquareRoot R(H.block(bi.offset, bi.offset, bi.tangent, bi.tangent), options_);
-    const Eigen::VectorXd w_b = R.solve_transpose(b.segment(bi.offset, bi.tangent));
-    std::vector<Eigen::MatrixXd> W;  // R^+T H_i,a per neighbour a
-    W.reserve(neighbours[i].size());
-    for (const int a : neighbours[i])
-      W.push_back(R.solve_transpose(H.block(bi.offset, infos[a].offset, bi.tangent, infos[a].tangent)));
+  std::vector<Eigen::MatrixXd> W;  // R^+T H_i,a per neighbour a
+  std::vector<int> offsets;
+  for (std::size_t k = 0; k < eliminated_first.size(); ++k) {
+    const std::vector<int>& around = neighbours[eliminated_first[k]];
+    const FirstRows& f = first_rows[k];
+    if (infos[eliminated_first[k]].tangent == 3 &&
+        std::all_of(around.begin(), around.end(), [&](int a) { return infos[a].tangent == 6; })) {
+      offsets.clear();
+      for (const int a : around) offsets.push_back(infos[a].offset - first_size);
+      if (eliminate_landmark_on_poses(f.H_ii, f.b_i, f.H_ia, offsets, options_, H, b)) continue;
+    }
+    const SquareRoot R(f.H_ii, options_);
+    const Eigen::VectorXd w_b = R.solve_transpose(f.b_i);
+    W.resize(around.size());
+    for (std::size_t x = 0; x < around.size(); ++x) W[x] = R.solve_transpose(f.H_ia[x]);
     for (std::size_t x = 0; x < W.size(); ++x) {
-      const BlockInfo& ba = infos[neighbours[i][x]];
-      b.segment(ba.offset, ba.tangent).noalias() -= W[x].transpose() * w_b;
+      const BlockInfo& ba = infos[around[x]];
+      b.segment(ba.offset - first_size, ba.tangent).noalias() -= W[x].transpose() * w_b;
       for (std::size_t y = 0; y < W.size(); ++y) {
-        const BlockInfo& bc = infos[neighbours[i][y]];
-        H.block(ba.offset, bc.offset, ba.tangent, bc.tangent).noalias() -= W[x].transpose() * W[y];
+        const BlockInfo& bc = infos[around[y]];
+        H.block(ba.offset - first_size, bc.offset - first_size, ba.tangent, bc.tangent).noalias() -=
+            W[x].transpose() * W[y];
       }
     }
   }
@@ -421,10 +493,10 @@ MarginalizationPrior Marginalizer::marginalize() const {
   Eigen::MatrixXd H_star = H.bottomRightCorner(kept_size, kept_size);
   Eigen::VectorXd b_star = b.tail(kept_size);
   if (rest_size > 0 && kept_size > 0) {
-    const SquareRoot R_mm(H.block(first_size, first_size, rest_size, rest_size), options_);
-    const Eigen::MatrixXd W = R_mm.solve_transpose(H.block(first_size, marginal_size, rest_size, kept_size));
-    H_star.noalias() -= W.transpose() * W;
-    b_star.noalias() -= W.transpose() * R_mm.solve_transpose(b.segment(first_size, rest_size));
+    const SquareRoot R_mm(H.topLeftCorner(rest_size, rest_size), options_);
+    const Eigen::MatrixXd W_rest = R_mm.solve_transpose(H.block(0, rest_size, rest_size, kept_size));
+    H_star.noalias() -= W_rest.transpose() * W_rest;
+    b_star.noalias() -= W_rest.transpose() * R_mm.solve_transpose(b.head(rest_size));
   }
 
   // 4. Square-root form of the prior: J = R, r = R^+T b* (R^T R = H*), so J^T r = b*.

@@ -22,6 +22,7 @@
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
+#include "navaid/estimation/factors/landmark_factors.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
 #include "navaid/simulation/imu_model.hpp"
@@ -133,6 +134,8 @@ struct Batch {
   std::array<double, kPoseSize> extrinsic{};
   std::vector<std::array<double, 1>> lambda;  // sized once: blocks must not move
   std::vector<int> anchor;                    // keyframe of each feature
+  std::vector<std::array<double, kLandmarkSize>> landmark;  // 3-parameter features, sized once
+  std::vector<int> landmark_anchor;
   std::vector<Factor> factors;
 
   std::vector<double*> pose_blocks() {
@@ -146,6 +149,9 @@ struct Batch {
     std::vector<double*> m{pose[0].data(), speed_bias[0].data()};
     for (std::size_t f = 0; f < lambda.size(); ++f) {
       if (anchor[f] == 0) m.push_back(lambda[f].data());
+    }
+    for (std::size_t f = 0; f < landmark_anchor.size(); ++f) {
+      if (landmark_anchor[f] == 0) m.push_back(landmark[f].data());
     }
     return m;
   }
@@ -313,6 +319,55 @@ TEST(Marginalization, PriorIsTheSchurComplementOfTheFullHessian) {
   for (std::size_t i = 0; i < prior.blocks.size(); ++i) {
     EXPECT_TRUE(std::equal(prior.x0[i].begin(), prior.x0[i].end(), prior.blocks[i]));
   }
+}
+
+// Features as 3-parameter landmarks [x_a, y_a, lambda] (estimated anchor bearing), eliminated
+// on the poses that see them (the fixed-size path); one more seen by its anchor bearing alone
+// (depth unobserved: the pseudo-inverse) adds nothing to the prior.
+TEST(Marginalization, ThreeParameterLandmarksGiveTheSchurComplement) {
+  Batch batch = make_batch(21);
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> xy(-0.5, 0.5), depth(2.0, 7.0);
+  const double pixel = kSigmaPx / kFocal;
+  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.05);
+  const auto cauchy = std::make_shared<ceres::CauchyLoss>(1.0);
+  constexpr int kLandmarks = 10;
+  batch.landmark.resize(kLandmarks + 1);
+  SE3 T_B_C;
+  T_B_C = pose_from_block(batch.extrinsic.data());
+  for (int f = 0; f < kLandmarks; ++f) {
+    const int a = f % 2;
+    batch.landmark_anchor.push_back(a);
+    const SE3 T_W_Ca = pose_from_block(batch.pose[a].data()) * T_B_C;
+    const double z = depth(rng);
+    const Vec3 P_ca(xy(rng) * z, xy(rng) * z, z);
+    const Vec3 P_w = T_W_Ca * P_ca;
+    const Eigen::Vector2d m_a = P_ca.head<2>() / z + Eigen::Vector2d(normal(rng), normal(rng)) * pixel;
+    auto& l = batch.landmark[f];
+    l = {m_a.x(), m_a.y(), (1.0 / z) * (1.0 + 0.03 * normal(rng))};
+    batch.factors.push_back({std::make_shared<AnchorBearingFactor>(m_a, kFocal, kSigmaPx), nullptr, {l.data()}});
+    batch.factors.push_back(
+        {std::make_shared<AnchorInverseDepthFactor>(z + 0.02 * normal(rng), sigma_lambda), nullptr, {l.data()}});
+    for (int t = a + 1; t < Batch::kKeyframes; ++t) {
+      const SE3 T_W_Ct = pose_from_block(batch.pose[t].data()) * T_B_C;
+      const Vec3 P_ct = T_W_Ct.inverse() * P_w;
+      const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + Eigen::Vector2d(normal(rng), normal(rng)) * pixel;
+      batch.factors.push_back({std::make_shared<LandmarkReprojectionFactor>(m_t, kFocal, kSigmaPx), cauchy,
+                               {batch.pose[a].data(), batch.pose[t].data(), batch.extrinsic.data(), l.data()}});
+    }
+  }
+  const MarginalizationPrior prior = marginalizer_for(batch, batch.leaving()).marginalize();
+  expect_prior_is_schur_complement(batch, prior, 1e-8);
+
+  auto& unobserved = batch.landmark[kLandmarks];
+  unobserved = {0.1, -0.2, 0.3};
+  batch.landmark_anchor.push_back(0);
+  batch.factors.push_back(
+      {std::make_shared<AnchorBearingFactor>(Eigen::Vector2d(0.1, -0.2), kFocal, kSigmaPx), nullptr, {unobserved.data()}});
+  const MarginalizationPrior with_unobserved = marginalizer_for(batch, batch.leaving()).marginalize();
+  EXPECT_LT(relative_difference(with_unobserved.information(), prior.information()), 1e-12);
+  EXPECT_LT(relative_difference(with_unobserved.gradient(), prior.gradient()), 1e-12);
 }
 
 TEST(Marginalization, RobustWeightingMatchesCeresIncludingTheTriggsCorrection) {
