@@ -90,6 +90,20 @@ TEST(SlidingWindowCalibration, OnlineTimeOffsetRecoversTheCameraDelay) {
   EXPECT_LT(rmse_online, rmse_held);
 }
 
+// A restart while the time offset is being estimated: the failed frame is recovered at the time
+// it was placed at, which the IMU covers (with the offset its solve had just moved, it could lie
+// past the IMU received so far).
+TEST(SlidingWindowCalibration, OnlineTimeOffsetSurvivesARestart) {
+  const io::Recording rec = testing::simulate_recording(
+      "swc_td_shock", {"scenario=lab-walk-1", "mount=hand", "simulation.mode=features", "duration=15", "seed=3",
+                       "sensor.camera.rate=15", "sensor.camera.time_offset=0.015",
+                       "sensor.camera.time_offset_calibrated=0", "sensor.imu.shocks=[8.0, 0.05, 60, 0, 0]"});
+  const auto online = testing::run_estimator(rec, {"estimator.time_offset.estimate=true"}, /*flush=*/false);
+  EXPECT_GE(online.stats.failures, 1u) << "the shock must be detected for this test to mean anything";
+  EXPECT_FALSE(online.estimates.empty());
+  EXPECT_NE(online.estimates.back().mode, EstimatorMode::kLost);
+}
+
 TEST(SlidingWindowCalibration, BadSigmaNamesTheKey) {
   const std::string msg = navaid::testing::error_message<ConfigError>(
       [] { testing::run_estimator(walk(), {"estimator.extrinsic.sigma_rotation=0"}); });

@@ -73,7 +73,9 @@ StateEstimate SlidingWindowEstimator::Impl::recover(const FeatureFrame& frame, c
   stats.last_failure = why + " at " + std::to_string(ns_to_seconds(frame.t)) + " s";
   // The failed frame's fix goes back to the queue: it is attached again to the frame's new state.
   if (const std::optional<GpsFix> fix = window.back()->gps) pending_fixes.push_front(*fix);
-  const Timestamp t = frame.t + camera_to_imu_ns;
+  // Where the frame was placed: its solve may have moved the online time offset since, and the
+  // IMU buffered so far covers the placed time, not necessarily frame.t + the new offset.
+  const Timestamp t = window.back()->t;
   // The good estimate: the newest confirmed one at least kRestartBackoff older than the newest
   // confirmed (a shock corrupts the velocity at once, the inlier share only as the position error
   // grows: the last frames before the failure may pass with a wrong velocity), else the oldest.
