@@ -307,8 +307,11 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
       }
       if (out.empty()) continue;
       const auto now = Clock::now();
-      for (auto& e : out) {
+      const std::vector<estimation::FrameStageTimes>& stages = in.estimator.stage_times();
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        auto& e = out[i];
         FrameRecord r;
+        if (i < stages.size()) r.stages = stages[i];
         r.estimator_ms = pending_ms / static_cast<double>(out.size());
         r.ms = *r.estimator_ms;
         if (const auto it = in_flight.find(e.t); it != in_flight.end()) {

@@ -43,9 +43,12 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
     // this frame's cost.
     if (in.source)
       if (const auto b_g = gyro_bias_feedback(out)) in.source->set_gyro_bias(*b_g);
-    for (auto& e : out) {
+    const std::vector<estimation::FrameStageTimes>& stages = in.estimator.stage_times();
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      auto& e = out[i];
       FrameRecord r;
       r.ms = pending_ms / static_cast<double>(out.size());
+      if (i < stages.size()) r.stages = stages[i];
       r.frontend = take_frontend_time(e.t);
       r.estimate = std::move(e);
       result.frames.push_back(std::move(r));

@@ -30,6 +30,7 @@ struct FrameRecord {
   std::optional<FrontendTime> frontend;  ///< image input only
   std::optional<double> estimator_ms;    ///< real time: the estimator thread's share of `ms`
   std::optional<double> latency_ms;      ///< real time: from the frame's arrival to its estimate
+  estimation::FrameStageTimes stages;    ///< the estimator's share by stage
 };
 
 struct PipelineInput {

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -47,6 +48,10 @@ std::shared_ptr<ceres::LossFunction> make_loss(const EstimatorConfig& cfg) {
     case LossKind::kNone: return nullptr;
   }
   return nullptr;
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 ceres::LinearSolverType solver_type(LinearSolverKind kind) {
@@ -193,6 +198,7 @@ std::vector<StateEstimate> SlidingWindowEstimator::Impl::process(const SensorEve
                 std::to_string(last_event_t) + " ns)");
   last_event_t = t;
   std::vector<StateEstimate> out;
+  stage_times.clear();
   if (const auto* s = std::get_if<ImuSample>(&event)) {
     if (!s->has_gyro) throw Error("estimator: IMU sample without gyro data at " + std::to_string(s->t) + " ns");
     if (!imu.empty() && s->t <= imu.back().t) return out;  // duplicate time stamp: keep the first
@@ -211,7 +217,9 @@ std::vector<StateEstimate> SlidingWindowEstimator::Impl::process(const SensorEve
       mag.push_back({m->t, calibrated_mag_field(cfg, m->field)});
   }
   while (!pending.empty() && !imu.empty() && pending.front().t + camera_to_imu_ns <= imu.back().t) {
+    frame_stages = {};
     out.push_back(handle_frame(pending.front()));
+    stage_times.push_back(frame_stages);
     pending.pop_front();
   }
   return out;
@@ -561,7 +569,11 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   stats.depth_features_in_last_solve = count.depth_features;
   // New frames are placed in the IMU clock with the current offset estimate.
   if (cfg.estimate_time_offset) camera_to_imu_ns = static_cast<Timestamp>(std::llround(time_offset[0] * 1e9));
-  if (covariance) *covariance = newest_covariance(problem, residuals);
+  if (covariance) {
+    const auto start = std::chrono::steady_clock::now();
+    *covariance = newest_covariance(problem, residuals);
+    frame_stages.covariance_ms += ms_since(start);
+  }
   return count;
 }
 
@@ -726,7 +738,9 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   // A non-keyframe is dropped after its solve: with non_keyframes=newest it moves alone (a restarted
   // window, still converging, always solves whole).
   const bool newest_only = !keyframe && cfg.non_keyframe_solve == NonKeyframeSolve::kNewest && gaussian_solves == 0;
+  const auto solve_start = std::chrono::steady_clock::now();
   const VisualCount count = solve(cfg.covariance_method != CovarianceMethod::kOff ? &c : nullptr, newest_only);
+  frame_stages.solve_ms += ms_since(solve_start) - frame_stages.covariance_ms;
   remove_failed_tracks();
   if (cfg.use_gps && cfg.gps_mode == GpsMode::kJoint) register_gps(newest);
   if (cfg.use_gps && cfg.gps_mode == GpsMode::kDecoupled) reregister_gps(newest);
@@ -783,7 +797,12 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   if (keyframe) {
     newest.keyframe = true;
     ++stats.keyframes;
-    if (static_cast<int>(window.size()) > cfg.window_size) slide_out_oldest();
+    frame_stages.keyframe = true;
+    if (static_cast<int>(window.size()) > cfg.window_size) {
+      const auto start = std::chrono::steady_clock::now();
+      slide_out_oldest();
+      frame_stages.marginalization_ms = ms_since(start);
+    }
   } else {
     tracks.remove_frame(newest.id);
     window.pop_back();
@@ -809,6 +828,7 @@ std::vector<StateEstimate> SlidingWindowEstimator::process(const SensorEvent& ev
 
 std::vector<StateEstimate> SlidingWindowEstimator::finish() {
   std::vector<StateEstimate> out;
+  impl_->stage_times.assign(impl_->pending.size(), FrameStageTimes{});
   for (const auto& f : impl_->pending) {
     ++impl_->stats.frames;
     StateEstimate e;
@@ -831,6 +851,7 @@ const EstimatorConfig& SlidingWindowEstimator::config() const { return impl_->cf
 SE3 SlidingWindowEstimator::camera_extrinsic() const { return pose_from_block(impl_->extrinsic); }
 double SlidingWindowEstimator::camera_time_offset_s() const { return impl_->time_offset[0]; }
 const EstimatorStatistics& SlidingWindowEstimator::statistics() const { return impl_->stats; }
+const std::vector<FrameStageTimes>& SlidingWindowEstimator::stage_times() const { return impl_->stage_times; }
 std::size_t SlidingWindowEstimator::window_keyframes() const {
   std::size_t n = 0;
   for (const auto& s : impl_->window) n += s->keyframe ? 1 : 0;

@@ -190,6 +190,8 @@ struct SlidingWindowEstimator::Impl {
   std::optional<Timestamp> imu_only_since;
   std::optional<StateEstimate> last_estimate;
   EstimatorStatistics stats;
+  std::vector<FrameStageTimes> stage_times;  // per estimate of the last process() / finish()
+  FrameStageTimes frame_stages;              // the frame being handled
 
   Impl(const RigCalibration& rig, const EstimatorConfig& config, const std::string& camera_name,
        const std::optional<GeodeticOrigin>& geodetic_origin);

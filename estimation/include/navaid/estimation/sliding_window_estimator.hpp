@@ -57,6 +57,15 @@ struct ResidualStatistics {
   std::size_t beyond_3_sigma_rms = 0;  ///< blocks with |r|^2 / rows > 9
 };
 
+/// Where one frame's estimator time went (steady clock: measured, not part of the deterministic
+/// output). Frames that were not solved (initializing, lost at the end) have zeros.
+struct FrameStageTimes {
+  bool keyframe = false;
+  double solve_ms = 0;            ///< the window's (or the newest state's) residuals, problem and Ceres solve
+  double covariance_ms = 0;       ///< the newest state's covariance
+  double marginalization_ms = 0;  ///< the oldest keyframe out of the window (keyframes only)
+};
+
 struct EstimatorStatistics {
   std::size_t frames = 0;            ///< feature frames estimated (every mode)
   std::size_t keyframes = 0;         ///< frames kept as keyframes
@@ -124,6 +133,8 @@ class SlidingWindowEstimator {
   /// estimate (estimator.time_offset.estimate).
   double camera_time_offset_s() const;
   const EstimatorStatistics& statistics() const;
+  /// One per estimate returned by the last process() or finish() call, in the same order.
+  const std::vector<FrameStageTimes>& stage_times() const;
   /// Keyframes currently in the window.
   std::size_t window_keyframes() const;
 
