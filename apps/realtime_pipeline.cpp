@@ -311,7 +311,7 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
       for (std::size_t i = 0; i < out.size(); ++i) {
         auto& e = out[i];
         FrameRecord r;
-        if (i < stages.size()) r.stages = stages[i];
+        r.stages = stages.at(i);  // one per estimate
         r.estimator_ms = pending_ms / static_cast<double>(out.size());
         r.ms = *r.estimator_ms;
         if (const auto it = in_flight.find(e.t); it != in_flight.end()) {

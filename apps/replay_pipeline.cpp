@@ -48,7 +48,7 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
       auto& e = out[i];
       FrameRecord r;
       r.ms = pending_ms / static_cast<double>(out.size());
-      if (i < stages.size()) r.stages = stages[i];
+      r.stages = stages.at(i);  // one per estimate
       r.frontend = take_frontend_time(e.t);
       r.estimate = std::move(e);
       result.frames.push_back(std::move(r));

@@ -108,6 +108,13 @@ void apply_loss(const ceres::LossFunction& loss, Eigen::VectorXd& r, Eigen::Matr
 // that no eigenvalue would be dropped) a Cholesky factor R = L^T serves, at a fraction of the cost;
 // otherwise H = U S U^T with the eigenvalues below max(relative * largest, absolute) dropped,
 // R = S^1/2 U^T and R^+T = S^-1/2 U^T (the pseudo-inverse).
+// The Cholesky test above, for any fixed or dynamic size: llt of H, norm1 = H's largest column sum.
+template <typename Llt>
+bool cholesky_suffices(const Llt& llt, double norm1, const Marginalizer::Options& options) {
+  return llt.info() == Eigen::Success && llt.rcond() > 1e3 * options.relative_eigenvalue_threshold &&
+         llt.rcond() * norm1 > 1e3 * options.absolute_eigenvalue_threshold;
+}
+
 class SquareRoot {
  public:
   SquareRoot(const Eigen::MatrixXd& H, const Marginalizer::Options& options) {
@@ -115,9 +122,7 @@ class SquareRoot {
     if (n == 0) return;
     llt_.compute(H);
     const double norm1 = H.cwiseAbs().colwise().sum().maxCoeff();  // >= lambda_max
-    triangular_ = llt_.info() == Eigen::Success &&
-                  llt_.rcond() > 1e3 * options.relative_eigenvalue_threshold &&
-                  llt_.rcond() * norm1 > 1e3 * options.absolute_eigenvalue_threshold;
+    triangular_ = cholesky_suffices(llt_, norm1, options);
     if (triangular_) return;
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
     const double largest = eig.eigenvalues()[n - 1];  // ascending
@@ -155,11 +160,7 @@ bool eliminate_landmark_on_poses(const Eigen::MatrixXd& H_ii, const Eigen::Vecto
                                  const Marginalizer::Options& options, Eigen::MatrixXd& H, Eigen::VectorXd& b) {
   const Eigen::Matrix3d A = H_ii;
   const Eigen::LLT<Eigen::Matrix3d> llt(A);
-  const double norm1 = A.cwiseAbs().colwise().sum().maxCoeff();
-  if (llt.info() != Eigen::Success || !(llt.rcond() > 1e3 * options.relative_eigenvalue_threshold) ||
-      !(llt.rcond() * norm1 > 1e3 * options.absolute_eigenvalue_threshold)) {
-    return false;
-  }
+  if (!cholesky_suffices(llt, A.cwiseAbs().colwise().sum().maxCoeff(), options)) return false;
   const auto L = llt.matrixL();
   const Eigen::Vector3d w_b = L.solve(Eigen::Vector3d(b_i));
   thread_local std::vector<Eigen::Matrix<double, 3, 6>> W;
