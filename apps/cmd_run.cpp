@@ -26,6 +26,7 @@
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
+#include "map_session.hpp"
 #include "run_pipeline.hpp"
 #include "run_topview.hpp"
 
@@ -118,6 +119,8 @@ void run(const RunArgs& a) {
                                               : Config::load(a.config_file, a.overrides);
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
+  const bool mapping_enabled = config.get_bool("mapping.enabled", false);
+  const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
   config.reject_unknown_keys();
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
     spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "
@@ -166,11 +169,28 @@ void run(const RunArgs& a) {
   }
   std::filesystem::create_directories(a.out);
 
-  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames};
+  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}};
   if (source) {
     pipeline_input.source = &*source;
     pipeline_input.load_images = &load_tracking_images;
     pipeline_input.imu_prediction = frontend_config.imu_prediction;
+  }
+  // mapping.enabled: the map is built as the estimates come (map/, the same folder navaid map writes).
+  std::optional<MapSession> map_session;
+  std::map<Timestamp, const RgbdFrame*> frame_at;
+  if (mapping_enabled) {
+    if (!any_depth)
+      throw Error(a.recording.string() + ": mapping.enabled=true needs RGB-D frames with depth; this recording has " +
+                  (input == Input::kFeatures ? "feature observations" : "no depth images"));
+    const auto& cams = recording.calibration.cameras;
+    const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
+    map_session.emplace(mapper_config, *cam, a.recording, a.out / "map",
+                        MapSessionOptions{1.0, camera_frames, groundtruth_poses(recording)});
+    for (const auto& f : recording.frames)
+      if (f.camera == camera) frame_at[f.t] = &f;
+    pipeline_input.on_estimate = [&](const StateEstimate& e) {
+      if (const auto it = frame_at.find(e.t); it != frame_at.end()) map_session->add(*it->second, e);
+    };
   }
   PipelineResult result = a.realtime ? realtime_pipeline(pipeline_input, a.realtime_options)
                                      : replay_pipeline(pipeline_input);
@@ -266,6 +286,12 @@ void run(const RunArgs& a) {
     fractions[name] = estimates.empty() ? 0.0 : static_cast<double>(modes[name]) / static_cast<double>(estimates.size());
   }
   j["mode_fractions"] = fractions;
+  if (map_session) {
+    const auto m = map_session->finish({{"recording", std::filesystem::absolute(a.recording).string()},
+                                        {"poses", "the estimator's, as the run went"}});
+    j["mapping"] = {{"folder", "map"}, {"frames", m["frames"]}, {"time_per_mapped_frame_ms", m["time_per_mapped_frame_ms"]}};
+    if (m.contains("quality")) j["mapping"]["quality"] = m["quality"]["occupancy"];
+  }
   j["time_per_frame_ms"] = {{"median", percentile(frame_ms, 0.5)}, {"p99", percentile(frame_ms, 0.99)},
                             {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())},
                             {"estimator_median", percentile(estimator_ms, 0.5)},

@@ -15,5 +15,6 @@ void add_ablate_command(CLI::App& app);
 void add_reproduce_command(CLI::App& app);
 void add_consistency_command(CLI::App& app);
 void add_init_study_command(CLI::App& app);
+void add_map_command(CLI::App& app);
 
 }  // namespace navaid::cli

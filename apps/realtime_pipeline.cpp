@@ -324,6 +324,7 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
         if (r.latency_ms) latency_ms.push_back(*r.latency_ms);
         r.estimate = std::move(e);
         result.frames.push_back(std::move(r));
+        if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
       }
       pending_ms = 0;
       progress.update(result.frames.size());
@@ -336,6 +337,7 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
     if (const auto it = in_flight.find(e.t); it != in_flight.end()) r.frontend = it->second.frontend;
     r.estimate = std::move(e);
     result.frames.push_back(std::move(r));
+    if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
   }
   progress.finish();
   result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();

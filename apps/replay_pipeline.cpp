@@ -52,6 +52,7 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
       r.frontend = take_frontend_time(e.t);
       r.estimate = std::move(e);
       result.frames.push_back(std::move(r));
+      if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
     }
     pending_ms = 0;
     progress.update(result.frames.size());
@@ -61,6 +62,7 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
     r.frontend = take_frontend_time(e.t);
     r.estimate = std::move(e);
     result.frames.push_back(std::move(r));
+    if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
   }
   progress.finish();
   result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();

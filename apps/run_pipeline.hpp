@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -42,6 +43,9 @@ struct PipelineInput {
   estimation::ImageFeatureSource::ImageLoader load_images;
   bool imu_prediction = false;  ///< the front end's KLT prediction uses the back end's gyro bias
   std::size_t camera_frames = 0;  ///< for the progress bar
+  /// Called with every estimate as it is made (replay: in order on the one thread; real time: on
+  /// the estimator's thread, after the estimate's latency is taken), e.g. to map as the run goes.
+  std::function<void(const StateEstimate&)> on_estimate;
 };
 
 struct RealtimeOptions {

@@ -14,6 +14,8 @@ PACKAGES=(
   libembree-dev
   libopencv-dev
   libceres-dev
+  liboctomap-dev libdynamicedt3d-dev
+  libpcl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
 )

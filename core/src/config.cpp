@@ -246,6 +246,20 @@ std::vector<double> Config::get_doubles(std::string_view key, std::size_t size, 
   return out;
 }
 
+std::vector<std::string> Config::get_strings(std::string_view key, const std::vector<std::string>& fallback) const {
+  impl_->read_keys.insert(std::string(key));
+  const auto node = find(impl_->root, key);
+  if (!node) return fallback;
+  if (!node->IsSequence()) throw ConfigError(origin(key), std::string(key), "expected a list of names, found a single value or map");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < node->size(); ++i) {
+    if (!(*node)[i].IsScalar())
+      throw ConfigError(origin(key), std::string(key) + "[" + std::to_string(i) + "]", "expected a name, found a list or map");
+    out.push_back((*node)[i].as<std::string>());
+  }
+  return out;
+}
+
 std::vector<std::string> Config::child_keys(std::string_view key) const {
   std::vector<std::string> out;
   const auto node = key.empty() ? std::optional<YAML::Node>(impl_->root) : find(impl_->root, key);

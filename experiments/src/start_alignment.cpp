@@ -1,6 +1,7 @@
 #include "navaid/experiments/start_alignment.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 #include "navaid/core/errors.hpp"
@@ -18,20 +19,25 @@ SE3 interpolate_pose(const std::vector<io::StampedPose>& gt, Timestamp t) {
   return SE3(before->T_W_B.q.slerp(a, after->T_W_B.q), (1.0 - a) * before->T_W_B.t + a * after->T_W_B.t);
 }
 
+SE3 first_state_transform(const StateEstimate& first, const std::vector<io::StampedPose>& gt) {
+  const SE3 g = interpolate_pose(gt, first.t);
+  const Mat3 Rz = Eigen::AngleAxisd(yaw_of(g.q) - yaw_of(first.T_W_B.q), Vec3::UnitZ()).toRotationMatrix();
+  return SE3(Rz, Vec3(g.t - Rz * first.T_W_B.t));
+}
+
 std::vector<PoseWithCovariance> align_to_first_state(const std::vector<StateEstimate>& estimates,
                                                      const std::vector<io::StampedPose>& gt) {
   std::vector<PoseWithCovariance> out;
   if (gt.empty()) return out;
-  bool have_transform = false;
+  std::optional<SE3> T_gt_W;
   Mat3 Rz = Mat3::Identity();
   Vec3 t = Vec3::Zero();
   for (const StateEstimate& s : estimates) {
     if (s.mode == EstimatorMode::kInitializing || s.t < gt.front().t || s.t > gt.back().t) continue;
-    if (!have_transform) {
-      const SE3 g = interpolate_pose(gt, s.t);
-      Rz = Eigen::AngleAxisd(yaw_of(g.q) - yaw_of(s.T_W_B.q), Vec3::UnitZ()).toRotationMatrix();
-      t = g.t - Rz * s.T_W_B.t;
-      have_transform = true;
+    if (!T_gt_W) {
+      T_gt_W = first_state_transform(s, gt);
+      Rz = T_gt_W->rotation();
+      t = T_gt_W->t;
     }
     PoseWithCovariance p = pose_with_covariance(s);
     p.T_W_B = SE3(Mat3(Rz * p.T_W_B.rotation()), Vec3(Rz * p.T_W_B.t + t));

@@ -26,10 +26,11 @@ void build_corridor(Scenario& s, Rng& rng) {
   const double x_low = 2.5 + rng.uniform(-0.2, 0.2);
   const double x_hang = 5.5 + rng.uniform(-0.2, 0.2);
   const double x_stand = 8.0 + rng.uniform(-0.2, 0.2);
-  b.box(Vec3(x_low - 0.3, 0.2, 0.0), Vec3(x_low + 0.3, 1.0, 0.3), C::kUnlabeled, 0.05);       // low box against the left wall
-  b.box(Vec3(x_hang - 0.3, -1.0, 1.3), Vec3(x_hang + 0.3, -0.2, 1.9), C::kTrafficSign, 0.05);  // hanging sign board
-  b.cylinder(Vec2(x_hang, -0.6), 1.9, 0.01, h - 1.9, C::kPole, 0.05);                           // its suspension
-  b.box(Vec3(x_stand - 0.25, 0.05, 0.0), Vec3(x_stand + 0.25, 0.55, 1.2), C::kUnlabeled, 0.05);  // standing cabinet
+  s.placed_obstacles = {
+      b.box(Vec3(x_low - 0.3, 0.2, 0.0), Vec3(x_low + 0.3, 1.0, 0.3), C::kUnlabeled, 0.05),        // low box against the left wall
+      b.box(Vec3(x_hang - 0.3, -1.0, 1.3), Vec3(x_hang + 0.3, -0.2, 1.9), C::kTrafficSign, 0.05),  // hanging sign board
+      b.box(Vec3(x_stand - 0.25, 0.05, 0.0), Vec3(x_stand + 0.25, 0.55, 1.2), C::kUnlabeled, 0.05)};  // standing cabinet
+  b.cylinder(Vec2(x_hang, -0.6), 1.9, 0.01, h - 1.9, C::kPole, 0.05);                           // the board's suspension
   s.path = {Vec2(0.0, 0.0),          Vec2(x_low - 1.3, 0.0),   Vec2(x_low - 0.5, -0.4), Vec2(x_low + 0.9, -0.4),
             Vec2(x_hang - 0.9, 0.4), Vec2(x_hang + 0.9, 0.4),  Vec2(x_stand - 0.7, -0.45), Vec2(x_stand + 0.7, -0.45),
             Vec2(10.0, 0.0)};
@@ -71,8 +72,9 @@ void build_obstacle_course(Scenario& s, Rng& rng) {
                                          b.surface(C::kUnlabeled, 0.05));
   const std::uint32_t cord = b.cylinder(Vec2(5.6, 1.4), 1.9, 0.005, h - 1.9, C::kUnlabeled, 0.05);
   s.deliberate_obstacles = {head, cord};
-  s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(9.15, 6.5, 1.0)), Vec3(0.3, 0.3, 0.25)}, b.surface(C::kUnlabeled, 0.05));
-  b.cylinder(Vec2(9.15, 6.5), 1.25, 0.005, h - 1.25, C::kUnlabeled, 0.05);
+  s.placed_obstacles = {
+      s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(9.15, 6.5, 1.0)), Vec3(0.3, 0.3, 0.25)}, b.surface(C::kUnlabeled, 0.05)),
+      b.cylinder(Vec2(9.15, 6.5), 1.25, 0.005, h - 1.25, C::kUnlabeled, 0.05)};
 
   // The music source marking the goal: a speaker on a small table in the corner.
   b.table(Vec2(9.5, 9.5), Vec2(0.3, 0.3), 0.0, 0.0);

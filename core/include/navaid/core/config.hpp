@@ -56,6 +56,8 @@ class Config {
                          const std::vector<std::string>& allowed) const;
   /// A sequence of numbers, each in `allowed`; `size` 0 means any length.
   std::vector<double> get_doubles(std::string_view key, std::size_t size, Range allowed) const;
+  /// A list of names; `fallback` when the key is absent.
+  std::vector<std::string> get_strings(std::string_view key, const std::vector<std::string>& fallback) const;
   /// Child keys of a map (empty when the key is absent).
   std::vector<std::string> child_keys(std::string_view key) const;
 

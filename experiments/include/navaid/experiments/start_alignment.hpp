@@ -17,6 +17,11 @@ namespace navaid::experiments {
 /// or `gt` is not strictly increasing in time.
 SE3 interpolate_pose(const std::vector<io::StampedPose>& gt, Timestamp t);
 
+/// The 4-DOF transform T_gt_W (yaw difference about z, then translation) that puts the estimate
+/// `first` exactly onto the ground truth at its time. Throws navaid::Error when first.t lies
+/// outside the ground truth's span.
+SE3 first_state_transform(const StateEstimate& first, const std::vector<io::StampedPose>& gt);
+
 /// The estimates that are not initializing, expressed in the ground truth's world through the
 /// 4-DOF transform that puts the first of them exactly onto the ground truth at its time: yaw
 /// difference about z, then translation. Position covariances are rotated with the yaw; rotation

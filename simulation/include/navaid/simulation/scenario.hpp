@@ -57,6 +57,9 @@ struct Scenario {
   /// Primitives the path deliberately meets (obstacles the user must avoid, e.g. low branches
   /// over the sidewalk): exempt from the path clearance rule.
   std::vector<std::uint32_t> deliberate_obstacles;
+  /// Obstacles placed beside the path for the user to avoid (the path keeps its clearance from
+  /// them): the corridor's stations, the obstacle course's waist-high hanging obstacle.
+  std::vector<std::uint32_t> placed_obstacles;
 };
 
 struct ScenarioOptions {

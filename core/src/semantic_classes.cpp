@@ -1,11 +1,11 @@
-#include "navaid/simulation/semantic_classes.hpp"
+#include "navaid/core/semantic_classes.hpp"
 
 #include <cassert>
 #include <string>
 
 #include "navaid/core/errors.hpp"
 
-namespace navaid::simulation {
+namespace navaid {
 
 namespace {
 using C = SemanticClass;
@@ -71,4 +71,4 @@ SemanticClass semantic_class_from_name(std::string_view name) {
 
 bool is_valid_semantic_id(std::uint8_t id) { return id < kNumSemanticClasses; }
 
-}  // namespace navaid::simulation
+}  // namespace navaid

@@ -1,0 +1,167 @@
+#include "map_session.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/io/image_io.hpp"
+#include "navaid/simulation/simulation_config.hpp"
+#include "run_pipeline.hpp"
+
+namespace navaid::cli {
+
+namespace {
+
+/// Resident memory of this process now and at its peak [MiB] (Linux /proc).
+std::pair<double, double> rss_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  double now = 0, peak = 0;
+  while (status >> key) {
+    double kib = 0;
+    if (key == "VmRSS:" && status >> kib) now = kib / 1024.0;
+    else if (key == "VmHWM:" && status >> kib) peak = kib / 1024.0;
+  }
+  return {now, peak};
+}
+
+std::string outcome_name(mapping::FrameOutcome o) {
+  switch (o) {
+    case mapping::FrameOutcome::kMapped: return "mapped";
+    case mapping::FrameOutcome::kNoDepth: return "no-depth";
+    case mapping::FrameOutcome::kNotLocalised: return "not-localised";
+    case mapping::FrameOutcome::kTooUncertain: return "too-uncertain";
+  }
+  return "?";
+}
+
+/// The simulated world behind a recording written by navaid simulate (its simulation.yaml).
+std::optional<simulation::Scenario> recording_scenario(const std::filesystem::path& recording) {
+  const auto file = recording / "simulation.yaml";
+  if (!std::filesystem::is_regular_file(file)) return std::nullopt;
+  const Config c = Config::load(file);
+  return simulation::make_scenario(simulation::read_scenario_name(c), simulation::read_scenario_options(c));
+}
+
+nlohmann::ordered_json quality_json(const experiments::MapQuality& q, const simulation::Scenario& scenario) {
+  nlohmann::ordered_json j;
+  j["occupancy"] = {{"precision", q.precision}, {"recall", q.recall}, {"f1", q.f1}, {"true_positive", q.true_positive},
+                    {"false_positive", q.false_positive}, {"false_negative", q.false_negative}};
+  j["semantic_accuracy"] = q.semantic_accuracy;
+  nlohmann::ordered_json classes = nlohmann::ordered_json::object();
+  for (const auto& [c, acc] : q.per_class)
+    classes[std::string(semantic_class_name(c))] = {
+        {"accuracy", acc.total ? static_cast<double>(acc.correct) / static_cast<double>(acc.total) : 0.0},
+        {"voxels", acc.total}};
+  j["semantic_accuracy_per_class"] = classes;
+  nlohmann::ordered_json obstacles = nlohmann::ordered_json::array();
+  for (const auto& d : q.deliberate)
+    obstacles.push_back({{"primitive", d.primitive}, {"on_path", d.on_path}, {"class", std::string(semantic_class_name(d.semantic))},
+                         {"z_min_above_ground_m", d.min_z_m - scenario.ground_z_m},
+                         {"z_max_above_ground_m", d.max_z_m - scenario.ground_z_m}, {"in_reach", d.in_reach},
+                         {"detected", d.detected}});
+  j["obstacles"] = obstacles;
+  j["obstacle_recall"] = q.deliberate_recall;
+  j["on_path_obstacle_recall"] = q.on_path_recall;
+  j["snapshots"] = q.snapshots;
+  return j;
+}
+
+}  // namespace
+
+std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording) {
+  std::vector<io::StampedPose> gt;
+  gt.reserve(recording.groundtruth.size());
+  for (const auto& g : recording.groundtruth) gt.push_back({g.t, g.T_W_B});
+  return gt;
+}
+
+MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibration& camera,
+                       const std::filesystem::path& recording_dir, const std::filesystem::path& out,
+                       const MapSessionOptions& options)
+    : config_(config),
+      out_(out),
+      options_(options),
+      mapper_(config, camera),
+      top_view_(config.map.resolution_m),
+      scenario_(recording_scenario(recording_dir)) {
+  if (!(options.snapshot_every_s > 0)) throw UsageError("the map snapshot interval must be positive");
+  if (scenario_) quality_ = std::make_unique<experiments::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+  std::filesystem::create_directories(out_);
+  timing_.open(out_ / "timing.csv");
+  if (!timing_) throw IoError((out_ / "timing.csv").string(), "cannot write");
+  timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms\n";
+}
+
+MapSession::~MapSession() = default;
+
+void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
+  ++frames_seen_;
+  RgbdFrame frame = unloaded;
+  frame.intensity_path.clear();  // the map needs depth, labels and confidence only
+  io::load_frame_images(frame);
+  const auto r = mapper_.process(frame, estimate);
+  timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f}\n", frame.t, frame.index, outcome_name(r.outcome),
+                         r.uncertainty.sigma_xy, r.uncertainty.sigma_yaw * 180.0 / M_PI, r.points,
+                         r.insert.occupied_voxels, r.insert.free_voxels, r.cloud_ms, r.insert_ms);
+  if (r.outcome == mapping::FrameOutcome::kMapped) {
+    if (quality_ && !aligned_ && !options_.align_to.empty()) {
+      quality_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
+      aligned_ = true;
+    }
+    cloud_ms_.push_back(r.cloud_ms);
+    insert_ms_.push_back(r.insert_ms);
+    total_ms_.push_back(r.cloud_ms + r.insert_ms);
+    top_view_.add_path_point(estimate.T_W_B.t);
+    if (!last_snapshot_ || frame.t - *last_snapshot_ >= static_cast<Timestamp>(options_.snapshot_every_s * 1e9)) {
+      last_snapshot_ = frame.t;
+      top_view_.add_voxels(mapper_.map().occupied_voxels());
+      if (quality_) quality_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
+    }
+  }
+  const std::size_t seen = frames_seen_ + no_pose_;
+  while (options_.frames_total > 0 && next_quarter_ <= 4 && 4 * seen >= next_quarter_ * options_.frames_total) {
+    const auto [now, peak] = rss_mib();
+    memory_.push_back({{"route_fraction", 0.25 * static_cast<double>(next_quarter_)}, {"rss_mib", now},
+                       {"peak_rss_mib", peak}, {"map_leaves", mapper_.map().leaf_count()},
+                       {"map_bytes", mapper_.map().memory_bytes()}});
+    ++next_quarter_;
+  }
+}
+
+nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
+  const auto& n = mapper_.counters();
+  if (n.no_depth > 0) spdlog::warn("{} frames without depth were not mapped", n.no_depth);
+  if (n.mapped == 0) spdlog::warn("no frame was mapped (timing.csv's outcome column says why)");
+  const mapping::SemanticMap& map = mapper_.map();
+  map.save(out_ / "map.ot");
+  map.write_color_octree(out_ / "map-color.ot");
+  map.write_ply(out_ / "map.ply");
+  top_view_.add_voxels(map.occupied_voxels());
+  if (top_view_.painted_cells() > 0) top_view_.write_png(out_ / "topview.png");
+
+  nlohmann::ordered_json j = extra;
+  j["frames"] = {{"total", frames_seen_ + no_pose_}, {"without_pose", no_pose_}, {"mapped", n.mapped},
+                 {"no_depth", n.no_depth}, {"not_localised", n.not_localised}, {"too_uncertain", n.too_uncertain}};
+  j["points_inserted"] = n.points;
+  j["map"] = {{"resolution_m", config_.map.resolution_m},
+              {"fusion", config_.map.fusion == mapping::FusionPolicy::kMax ? "max" : "bayes"},
+              {"window_size_m", config_.map.window_size_m},
+              {"leaves", map.leaf_count()},
+              {"bytes", map.memory_bytes()},
+              {"occupied_voxels_in_window", map.occupied_voxels().size()}};
+  j["time_per_mapped_frame_ms"] = {{"cloud_median", percentile(cloud_ms_, 0.5)},
+                                   {"insert_median", percentile(insert_ms_, 0.5)},
+                                   {"median", percentile(total_ms_, 0.5)},
+                                   {"p90", percentile(total_ms_, 0.9)},
+                                   {"max", percentile(total_ms_, 1.0)}};
+  j["memory"] = memory_;
+  if (quality_) j["quality"] = quality_json(quality_->result(), *scenario_);
+  std::ofstream(out_ / "summary.json") << j.dump(2) << "\n";
+  return j;
+}
+
+}  // namespace navaid::cli

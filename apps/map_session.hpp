@@ -1,0 +1,70 @@
+#pragma once
+// One mapping session over a recording's frames, shared by `navaid map` (poses from a run folder
+// or ground truth) and `navaid run --set mapping.enabled=true` (poses as the estimator makes
+// them): maps each frame, snapshots the map (top view, quality against a simulated world), and
+// writes the map folder (map.ot, map-color.ot, map.ply, topview.png, timing.csv, summary.json).
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "navaid/core/config.hpp"
+#include "navaid/core/state_estimate.hpp"
+#include "navaid/experiments/map_quality.hpp"
+#include "navaid/io/recording.hpp"
+#include "navaid/io/tum_trajectory.hpp"
+#include "navaid/mapping/map_top_view.hpp"
+#include "navaid/mapping/mapper.hpp"
+
+namespace navaid::cli {
+
+struct MapSessionOptions {
+  double snapshot_every_s = 1.0;  ///< recording seconds between snapshots
+  std::size_t frames_total = 0;   ///< for the memory read-outs at 25 / 50 / 75 / 100 % of the route
+  /// Estimated poses: the recording's ground truth, to put the map into the simulated world for
+  /// the quality metrics (first-state alignment at the first mapped frame). Empty: the poses are
+  /// in the world's frame already (ground-truth poses).
+  std::vector<io::StampedPose> align_to = {};
+};
+
+/// The recording's ground truth as stamped poses (for MapSessionOptions::align_to).
+std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording);
+
+class MapSession {
+ public:
+  /// `recording_dir`: where the recording lives (its simulation.yaml, when present, gives the world
+  /// for the quality metrics). Creates `out`.
+  MapSession(const mapping::MapperConfig& config, const CameraCalibration& camera,
+             const std::filesystem::path& recording_dir, const std::filesystem::path& out,
+             const MapSessionOptions& options);
+  ~MapSession();
+
+  /// Maps one frame of the session's camera (images not loaded: loaded and freed here).
+  void add(const RgbdFrame& frame, const StateEstimate& estimate);
+  /// A frame that has no pose (counted).
+  void add_without_pose() { ++no_pose_; }
+
+  /// Writes the map files and summary.json (with `extra` merged at the top); returns the summary.
+  nlohmann::ordered_json finish(const nlohmann::ordered_json& extra);
+
+  const mapping::Mapper& mapper() const { return mapper_; }
+
+ private:
+  mapping::MapperConfig config_;
+  std::filesystem::path out_;
+  MapSessionOptions options_;
+  mapping::Mapper mapper_;
+  mapping::MapTopView top_view_;
+  std::optional<simulation::Scenario> scenario_;
+  std::unique_ptr<experiments::MapQualityAccumulator> quality_;
+  std::ofstream timing_;
+  std::vector<double> cloud_ms_, insert_ms_, total_ms_;
+  nlohmann::ordered_json memory_ = nlohmann::ordered_json::array();
+  std::size_t frames_seen_ = 0, no_pose_ = 0, next_quarter_ = 1;
+  std::optional<Timestamp> last_snapshot_;
+  bool aligned_ = false;
+};
+
+}  // namespace navaid::cli

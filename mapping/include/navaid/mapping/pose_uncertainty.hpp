@@ -1,0 +1,44 @@
+#pragma once
+// How sure the estimator is of a pose, in the numbers the map acts on, and the gate that keeps
+// uncertain or unlocalised frames out of the map.
+//
+// From StateEstimate::covariance (state_estimate.hpp: rotation error on the right, position error
+// in W):
+//   sigma_xy  = sqrt(largest eigenvalue of the x-y block of the position covariance) [m]: the
+//               horizontal standard deviation in the worst direction;
+//   sigma_z   = sqrt(position covariance zz) [m];
+//   sigma_yaw = sqrt(e_z^T R Sigma_theta R^T e_z) [rad]: the right-multiplied rotation error moved
+//               into W (dtheta_W = R dtheta_B), its component about gravity.
+#include <cstddef>
+#include <string>
+
+#include "navaid/core/config.hpp"
+#include "navaid/core/state_estimate.hpp"
+
+namespace navaid::mapping {
+
+struct PoseUncertainty {
+  double sigma_xy = 0.0;
+  double sigma_z = 0.0;
+  double sigma_yaw = 0.0;
+};
+
+/// Throws navaid::Error when the pose and position/rotation blocks of the covariance are not
+/// finite, not symmetric or not positive definite (the message gives the estimate's time).
+PoseUncertainty pose_uncertainty(const StateEstimate& estimate);
+
+struct MappingGateConfig {
+  double max_sigma_xy_m = 0.5;    ///< a frame less sure than this horizontally is not mapped
+  double max_sigma_yaw_rad = 0.0872664626;  ///< 5 deg: at 5 m range a 5 deg yaw error moves points 0.44 m
+};
+
+/// Keys mapping.gate.max_sigma_xy_m and mapping.gate.max_sigma_yaw_deg (degrees in the file).
+MappingGateConfig read_mapping_gate_config(const Config& config);
+
+enum class GateDecision { kMap, kSkipMode, kSkipUncertain };
+
+/// kSkipMode for estimates initializing or lost (never mapped), kSkipUncertain when sigma_xy or
+/// sigma_yaw exceed the limits, else kMap.
+GateDecision gate(const StateEstimate& estimate, const PoseUncertainty& u, const MappingGateConfig& config);
+
+}  // namespace navaid::mapping

@@ -1,0 +1,54 @@
+#include "navaid/mapping/pose_uncertainty.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "navaid/core/errors.hpp"
+
+namespace navaid::mapping {
+
+namespace {
+std::string at_time(const StateEstimate& e) { return "estimate at t = " + std::to_string(e.t) + " ns: "; }
+
+void check_block(const Eigen::Matrix3d& block, const char* what, const StateEstimate& e) {
+  if (!block.allFinite()) throw Error(at_time(e) + what + " covariance is not finite");
+  if ((block - block.transpose()).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, block.cwiseAbs().maxCoeff()))
+    throw Error(at_time(e) + what + " covariance is not symmetric");
+  Eigen::LLT<Eigen::Matrix3d> llt(block);
+  if (llt.info() != Eigen::Success) throw Error(at_time(e) + what + " covariance is not positive definite");
+}
+}  // namespace
+
+PoseUncertainty pose_uncertainty(const StateEstimate& e) {
+  if (!e.T_W_B.t.allFinite() || !e.T_W_B.q.coeffs().allFinite()) throw Error(at_time(e) + "pose is not finite");
+  const Eigen::Matrix3d rot = e.covariance.block<3, 3>(0, 0);
+  const Eigen::Matrix3d pos = e.covariance.block<3, 3>(3, 3);
+  check_block(rot, "rotation", e);
+  check_block(pos, "position", e);
+  PoseUncertainty u;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> xy(pos.block<2, 2>(0, 0), Eigen::EigenvaluesOnly);
+  u.sigma_xy = std::sqrt(std::max(0.0, xy.eigenvalues().maxCoeff()));
+  u.sigma_z = std::sqrt(pos(2, 2));
+  const Eigen::Matrix3d R = e.T_W_B.q.toRotationMatrix();
+  const Eigen::Matrix3d rot_W = R * rot * R.transpose();
+  u.sigma_yaw = std::sqrt(std::max(0.0, rot_W(2, 2)));
+  return u;
+}
+
+MappingGateConfig read_mapping_gate_config(const Config& c) {
+  MappingGateConfig g;
+  g.max_sigma_xy_m = c.get_double("mapping.gate.max_sigma_xy_m", g.max_sigma_xy_m, {0.0, 100.0});
+  g.max_sigma_yaw_rad =
+      c.get_double("mapping.gate.max_sigma_yaw_deg", g.max_sigma_yaw_rad * 180.0 / M_PI, {0.0, 180.0}) * M_PI / 180.0;
+  return g;
+}
+
+GateDecision gate(const StateEstimate& e, const PoseUncertainty& u, const MappingGateConfig& g) {
+  if (e.mode == EstimatorMode::kInitializing || e.mode == EstimatorMode::kLost) return GateDecision::kSkipMode;
+  if (u.sigma_xy > g.max_sigma_xy_m || u.sigma_yaw > g.max_sigma_yaw_rad) return GateDecision::kSkipUncertain;
+  return GateDecision::kMap;
+}
+
+}  // namespace navaid::mapping

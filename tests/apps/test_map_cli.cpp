@@ -1,0 +1,102 @@
+// End-to-end tests of `navaid map` and of `navaid run --set mapping.enabled=true` on a rendered
+// corridor walk with the cane rig: the map folder, quality against the simulated world, the same
+// map from the run's estimates afterwards as during the run, and the errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using navaid::testing::navaid_cli;
+using navaid::testing::read_text;
+using navaid::testing::ScratchDir;
+
+namespace {
+
+class MapCli : public ::testing::Test {
+ protected:
+  // One rendered walk for the suite: 6 s of the corridor (1 s still start), cane mount, 320x240 at 15 Hz.
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<ScratchDir>("map_cli");
+    const auto sim = navaid_cli("simulate --scenario corridor --mount cane --seed 3 --threads 1 --out '" +
+                                path("walk").string() +
+                                "' --set duration=6 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15");
+    ASSERT_EQ(sim.status, 0) << sim.output;
+    const auto run = navaid_cli("run --recording '" + path("walk").string() + "' --out '" + path("run").string() +
+                                "' --set mapping.enabled=true --no-plot");
+    ASSERT_EQ(run.status, 0) << run.output;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+  static fs::path path(const std::string& name) { return *dir_ / name; }
+  static std::unique_ptr<ScratchDir> dir_;
+};
+
+std::unique_ptr<ScratchDir> MapCli::dir_;
+
+TEST_F(MapCli, GroundTruthPosesGiveAMapFolderWithQuality) {
+  const fs::path out = path("map-gt");
+  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
+                            out.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("quality: occupancy precision"), std::string::npos) << r.output;
+  for (const char* f : {"map.ot", "map-color.ot", "map.ply", "topview.png", "timing.csv", "summary.json", "config.yaml"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  EXPECT_NE(read_text(out / "map.ot").find("id SemanticOcTree-max"), std::string::npos);
+  EXPECT_NE(read_text(out / "map-color.ot").find("id ColorOcTree"), std::string::npos);
+  const auto s = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(s["poses"], "groundtruth");
+  EXPECT_GT(s["frames"]["mapped"].get<std::size_t>(), 60u);
+  EXPECT_EQ(s["frames"]["not_localised"].get<std::size_t>(), 0u);
+  const auto& q = s["quality"];
+  EXPECT_GT(q["occupancy"]["precision"].get<double>(), 0.9);
+  EXPECT_GT(q["occupancy"]["recall"].get<double>(), 0.6);
+  EXPECT_GT(q["semantic_accuracy"].get<double>(), 0.6);
+  ASSERT_EQ(q["obstacles"].size(), 3u);  // the corridor's low box, hanging sign and cabinet
+  ASSERT_EQ(s["memory"].size(), 4u);
+  EXPECT_GT(s["time_per_mapped_frame_ms"]["median"].get<double>(), 0.0);
+}
+
+TEST_F(MapCli, TheRunMapsAsItGoesAndNavaidMapRebuildsTheSameMapFromItsEstimates) {
+  const auto run_summary = nlohmann::json::parse(read_text(path("run") / "summary.json"));
+  ASSERT_TRUE(run_summary.contains("mapping"));
+  const std::size_t mapped = run_summary["mapping"]["frames"]["mapped"].get<std::size_t>();
+  EXPECT_GT(mapped, 40u);
+  EXPECT_GT(run_summary["mapping"]["frames"]["not_localised"].get<std::size_t>(), 0u);  // the still start initializes
+  const fs::path out = path("map-est");
+  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --run '" + path("run").string() +
+                            "' --out '" + out.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(s["frames"]["mapped"].get<std::size_t>(), mapped);
+  EXPECT_EQ(read_text(out / "map.ply"), read_text(path("run") / "map" / "map.ply"));
+}
+
+TEST_F(MapCli, ARunOfAnotherRecordingIsRejected) {
+  const fs::path other = path("other");
+  ASSERT_EQ(navaid_cli("simulate --scenario corridor --mount cane --seed 4 --threads 1 --out '" + other.string() +
+                       "' --set duration=3 --set sensor.camera.resolution=[160,120] "
+                       "--set sensor.camera.rate=5")
+                .status,
+            0);
+  const auto r = navaid_cli("map --recording '" + other.string() + "' --run '" + path("run").string() + "' --out '" +
+                            path("bad").string() + "'");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("estimates.csv"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("does not match the recording"), std::string::npos) << r.output;
+}
+
+TEST_F(MapCli, UsageErrors) {
+  const auto no_run = navaid_cli("map --recording '" + path("walk").string() + "' --out '" + path("x").string() + "'");
+  EXPECT_NE(no_run.status, 0);
+  EXPECT_NE(no_run.output.find("--run is required"), std::string::npos) << no_run.output;
+  const auto bad_key = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
+                                  path("y").string() + "' --set mapping.map.fusion=mean");
+  EXPECT_NE(bad_key.status, 0);
+  EXPECT_NE(bad_key.output.find("mapping.map.fusion"), std::string::npos) << bad_key.output;
+}
+
+}  // namespace
