@@ -23,6 +23,7 @@ struct MapArgs {
   std::string poses = "run";
   std::vector<std::string> overrides;
   double snapshot_every_s = 1.0;
+  double png_every_s = 5.0;
 };
 
 void run_map(const MapArgs& a) {
@@ -30,6 +31,7 @@ void run_map(const MapArgs& a) {
   if (a.out.empty()) throw UsageError("--out is required");
   if (a.poses == "run" && a.run.empty()) throw UsageError("--run is required (or --poses groundtruth)");
   if (!(a.snapshot_every_s > 0)) throw UsageError("--snapshot-every must be positive");
+  if (!(a.png_every_s >= 0)) throw UsageError("--png-every must be 0 or positive");
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
@@ -56,7 +58,7 @@ void run_map(const MapArgs& a) {
     poses = poses_from_estimates(frames, experiments::read_estimates_csv(estimates_file), estimates_file);
   }
 
-  MapSessionOptions options{a.snapshot_every_s, frames.size()};
+  MapSessionOptions options{a.snapshot_every_s, a.png_every_s, frames.size()};
   if (a.poses == "run") options.align_to = groundtruth_poses(recording);
   MapSession session(mapper_config, camera, a.recording, a.out, options);
   Progress progress("mapping", frames.size());
@@ -82,10 +84,16 @@ void run_map(const MapArgs& a) {
   if (summary.contains("quality")) {
     const auto& q = summary["quality"];
     std::cout << fmt::format("quality: occupancy precision {:.3f}, recall {:.3f}, F1 {:.3f}; semantic accuracy {:.3f}; "
-                             "obstacle recall {:.2f} (on the path {:.2f})\n",
+                             "obstacles detected {:.0f} of {}",
                              q["occupancy"]["precision"].get<double>(), q["occupancy"]["recall"].get<double>(),
                              q["occupancy"]["f1"].get<double>(), q["semantic_accuracy"].get<double>(),
-                             q["obstacle_recall"].get<double>(), q["on_path_obstacle_recall"].get<double>());
+                             q["obstacle_recall"].get<double>() * q["obstacles_in_reach"].get<double>(),
+                             q["obstacles_in_reach"].get<std::size_t>());
+    if (q["on_path_obstacles_in_reach"].get<std::size_t>() > 0)
+      std::cout << fmt::format(" ({:.0f} of {} on the path)",
+                               q["on_path_obstacle_recall"].get<double>() * q["on_path_obstacles_in_reach"].get<double>(),
+                               q["on_path_obstacles_in_reach"].get<std::size_t>());
+    std::cout << "\n";
   }
 }
 
@@ -105,6 +113,9 @@ void add_map_command(CLI::App& app) {
   cmd->add_option("--set", a->overrides, "Override a key, e.g. --set mapping.map.fusion=bayes (repeatable)");
   cmd->add_option("--snapshot-every", a->snapshot_every_s,
                   "Seconds of recording between map snapshots (top view, quality)")
+      ->capture_default_str();
+  cmd->add_option("--png-every", a->png_every_s,
+                  "Seconds of recording between 2D-map PNGs in snapshots/ (0: only the final ones)")
       ->capture_default_str();
   cmd->callback([a] { run_map(*a); });
 }

@@ -185,7 +185,7 @@ void run(const RunArgs& a) {
     const auto& cams = recording.calibration.cameras;
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
     map_session.emplace(mapper_config, *cam, a.recording, a.out / "map",
-                        MapSessionOptions{1.0, camera_frames, groundtruth_poses(recording)});
+                        MapSessionOptions{1.0, 5.0, camera_frames, groundtruth_poses(recording)});
     for (const auto& f : recording.frames)
       if (f.camera == camera) frame_at[f.t] = &f;
     pipeline_input.on_estimate = [&](const StateEstimate& e) {

@@ -8,12 +8,16 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/start_alignment.hpp"
 #include "navaid/io/image_io.hpp"
+#include "navaid/mapping/map_png.hpp"
 #include "navaid/simulation/simulation_config.hpp"
 #include "run_pipeline.hpp"
 
 namespace navaid::cli {
 
 namespace {
+
+/// The top view shows what lies below 0.3 m over the body (the IMU: head, cane or hand height).
+constexpr double kTopViewAboveBodyM = 0.3;
 
 /// Resident memory of this process now and at its peak [MiB] (Linux /proc).
 std::pair<double, double> rss_mib() {
@@ -64,7 +68,9 @@ nlohmann::ordered_json quality_json(const experiments::MapQuality& q, const simu
                          {"z_max_above_ground_m", d.max_z_m - scenario.ground_z_m}, {"in_reach", d.in_reach},
                          {"detected", d.detected}});
   j["obstacles"] = obstacles;
+  j["obstacles_in_reach"] = q.in_reach;
   j["obstacle_recall"] = q.deliberate_recall;
+  j["on_path_obstacles_in_reach"] = q.on_path_in_reach;
   j["on_path_obstacle_recall"] = q.on_path_recall;
   j["snapshots"] = q.snapshots;
   return j;
@@ -93,7 +99,8 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
   std::filesystem::create_directories(out_);
   timing_.open(out_ / "timing.csv");
   if (!timing_) throw IoError((out_ / "timing.csv").string(), "cannot write");
-  timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms\n";
+  timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms,"
+             "layers_ms,esdf_ms\n";
 }
 
 MapSession::~MapSession() = default;
@@ -104,9 +111,10 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
   frame.intensity_path.clear();  // the map needs depth, labels and confidence only
   io::load_frame_images(frame);
   const auto r = mapper_.process(frame, estimate);
-  timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f}\n", frame.t, frame.index, outcome_name(r.outcome),
-                         r.uncertainty.sigma_xy, r.uncertainty.sigma_yaw * 180.0 / M_PI, r.points,
-                         r.insert.occupied_voxels, r.insert.free_voxels, r.cloud_ms, r.insert_ms);
+  timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", frame.t, frame.index,
+                         outcome_name(r.outcome), r.uncertainty.sigma_xy, r.uncertainty.sigma_yaw * 180.0 / M_PI,
+                         r.points, r.insert.occupied_voxels, r.insert.free_voxels, r.cloud_ms, r.insert_ms, r.layers_ms,
+                         r.esdf_ms);
   if (r.outcome == mapping::FrameOutcome::kMapped) {
     if (quality_ && !aligned_ && !options_.align_to.empty()) {
       quality_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
@@ -114,11 +122,18 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
     }
     cloud_ms_.push_back(r.cloud_ms);
     insert_ms_.push_back(r.insert_ms);
-    total_ms_.push_back(r.cloud_ms + r.insert_ms);
+    layers_ms_.push_back(r.layers_ms);
+    esdf_ms_.push_back(r.esdf_ms);
+    total_ms_.push_back(r.cloud_ms + r.insert_ms + r.layers_ms + r.esdf_ms);
+    if (options_.png_every_s > 0 && mapper_.local_maps() &&
+        (!last_png_ || frame.t - *last_png_ >= static_cast<Timestamp>(options_.png_every_s * 1e9))) {
+      last_png_ = frame.t;
+      write_layer_pngs(out_ / "snapshots", fmt::format("{:04d}-", pngs_++));
+    }
     top_view_.add_path_point(estimate.T_W_B.t);
     if (!last_snapshot_ || frame.t - *last_snapshot_ >= static_cast<Timestamp>(options_.snapshot_every_s * 1e9)) {
       last_snapshot_ = frame.t;
-      top_view_.add_voxels(mapper_.map().occupied_voxels());
+      top_view_.add_voxels(mapper_.map().occupied_voxels(), estimate.T_W_B.t.z() + kTopViewAboveBodyM);
       if (quality_) quality_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
     }
   }
@@ -132,6 +147,17 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
   }
 }
 
+void MapSession::write_layer_pngs(const std::filesystem::path& dir, const std::string& prefix) const {
+  const mapping::LocalMaps* maps = mapper_.local_maps();
+  if (maps == nullptr) return;
+  std::filesystem::create_directories(dir);
+  mapping::write_height_map_png(dir / (prefix + "height.png"), maps->height);
+  mapping::write_undulation_map_png(dir / (prefix + "undulation.png"), maps->undulation);
+  mapping::write_collision_map_png(dir / (prefix + "collision.png"), maps->collision);
+  mapping::write_cost_map_png(dir / (prefix + "cost.png"), maps->cost);
+  mapping::write_esdf_png(dir / (prefix + "esdf.png"), maps->esdf);
+}
+
 nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   const auto& n = mapper_.counters();
   if (n.no_depth > 0) spdlog::warn("{} frames without depth were not mapped", n.no_depth);
@@ -140,8 +166,9 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   map.save(out_ / "map.ot");
   map.write_color_octree(out_ / "map-color.ot");
   map.write_ply(out_ / "map.ply");
-  top_view_.add_voxels(map.occupied_voxels());
+  top_view_.add_voxels(map.occupied_voxels(), map.window_center().z() + kTopViewAboveBodyM);
   if (top_view_.painted_cells() > 0) top_view_.write_png(out_ / "topview.png");
+  write_layer_pngs(out_, "");
 
   nlohmann::ordered_json j = extra;
   j["frames"] = {{"total", frames_seen_ + no_pose_}, {"without_pose", no_pose_}, {"mapped", n.mapped},
@@ -155,6 +182,8 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
               {"occupied_voxels_in_window", map.occupied_voxels().size()}};
   j["time_per_mapped_frame_ms"] = {{"cloud_median", percentile(cloud_ms_, 0.5)},
                                    {"insert_median", percentile(insert_ms_, 0.5)},
+                                   {"layers_median", percentile(layers_ms_, 0.5)},
+                                   {"esdf_median", percentile(esdf_ms_, 0.5)},
                                    {"median", percentile(total_ms_, 0.5)},
                                    {"p90", percentile(total_ms_, 0.9)},
                                    {"max", percentile(total_ms_, 1.0)}};

@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "navaid/core/config.hpp"
@@ -21,7 +22,8 @@
 namespace navaid::cli {
 
 struct MapSessionOptions {
-  double snapshot_every_s = 1.0;  ///< recording seconds between snapshots
+  double snapshot_every_s = 1.0;  ///< recording seconds between snapshots (top view, quality)
+  double png_every_s = 5.0;       ///< recording seconds between 2D-map PNGs (snapshots/); 0: only the last
   std::size_t frames_total = 0;   ///< for the memory read-outs at 25 / 50 / 75 / 100 % of the route
   /// Estimated poses: the recording's ground truth, to put the map into the simulated world for
   /// the quality metrics (first-state alignment at the first mapped frame). Empty: the poses are
@@ -52,6 +54,9 @@ class MapSession {
   const mapping::Mapper& mapper() const { return mapper_; }
 
  private:
+  /// height, undulation, collision, cost and ESDF PNGs of the last mapped frame's window.
+  void write_layer_pngs(const std::filesystem::path& dir, const std::string& prefix) const;
+
   mapping::MapperConfig config_;
   std::filesystem::path out_;
   MapSessionOptions options_;
@@ -60,10 +65,11 @@ class MapSession {
   std::optional<simulation::Scenario> scenario_;
   std::unique_ptr<experiments::MapQualityAccumulator> quality_;
   std::ofstream timing_;
-  std::vector<double> cloud_ms_, insert_ms_, total_ms_;
+  std::vector<double> cloud_ms_, insert_ms_, layers_ms_, esdf_ms_, total_ms_;
   nlohmann::ordered_json memory_ = nlohmann::ordered_json::array();
   std::size_t frames_seen_ = 0, no_pose_ = 0, next_quarter_ = 1;
-  std::optional<Timestamp> last_snapshot_;
+  std::optional<Timestamp> last_snapshot_, last_png_;
+  std::size_t pngs_ = 0;
   bool aligned_ = false;
 };
 

@@ -223,6 +223,8 @@ MapQuality MapQualityAccumulator::result() const {
     reach += d.in_reach, found += d.in_reach && d.detected;
     if (d.on_path) reach_path += d.in_reach, found_path += d.in_reach && d.detected;
   }
+  q.in_reach = reach;
+  q.on_path_in_reach = reach_path;
   q.deliberate_recall = reach ? static_cast<double>(found) / static_cast<double>(reach) : 0.0;
   q.on_path_recall = reach_path ? static_cast<double>(found_path) / static_cast<double>(reach_path) : 0.0;
   return q;

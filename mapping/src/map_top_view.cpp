@@ -23,10 +23,11 @@ MapTopView::MapTopView(double cell_m) : cell_m_(cell_m) {
   if (!(cell_m > 0.0)) throw Error("MapTopView: cell size must be positive");
 }
 
-void MapTopView::add_voxels(const MapVoxels& voxels) {
+void MapTopView::add_voxels(const MapVoxels& voxels, double max_z_W) {
   // Highest voxel per cell of this snapshot replaces what the cell showed.
   std::map<std::pair<long, long>, std::pair<float, SemanticClass>> top;
   for (const auto& v : voxels) {
+    if (v.center_W.z() > max_z_W) continue;
     const std::pair<long, long> key{static_cast<long>(std::floor(v.center_W.x() / cell_m_)),
                                     static_cast<long>(std::floor(v.center_W.y() / cell_m_))};
     const float z = static_cast<float>(v.center_W.z());
@@ -49,7 +50,8 @@ void MapTopView::write_png(const std::filesystem::path& file, int max_side_px) c
   }
   for (const auto& p : path_) x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x()), y0 = std::min(y0, p.y()), y1 = std::max(y1, p.y());
   x0 -= 1.0, y0 -= 1.0, x1 += 1.0, y1 += 1.0;
-  const double px_per_m = std::min(1.0 / cell_m_, max_side_px / std::max(x1 - x0, y1 - y0));
+  // At most 40 px per metre (a short walk stays readable), at most max_side_px in all.
+  const double px_per_m = std::min(40.0, max_side_px / std::max(x1 - x0, y1 - y0));
   const int w = static_cast<int>(std::ceil((x1 - x0) * px_per_m)), h = static_cast<int>(std::ceil((y1 - y0) * px_per_m));
   const int legend_h = 22;
   std::set<SemanticClass> seen;

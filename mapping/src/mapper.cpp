@@ -9,6 +9,13 @@ MapperConfig read_mapper_config(const Config& c) {
   m.cloud = read_semantic_point_cloud_config(c);
   m.map = read_semantic_map_config(c);
   m.gate = read_mapping_gate_config(c);
+  m.layers = c.get_bool("mapping.layers", m.layers);
+  m.grid = read_grid_config(c);
+  m.height = read_height_map_config(c);
+  m.undulation = read_undulation_config(c);
+  m.collision = read_collision_config(c);
+  m.cost = read_cost_map_config(c);
+  m.esdf = read_esdf_2d_config(c);
   return m;
 }
 
@@ -53,6 +60,23 @@ MapperFrameResult Mapper::process(const RgbdFrame& frame, const StateEstimate& e
   r.points = cloud.points.size();
   counters_.points += r.points;
   ++counters_.mapped;
+  if (config_.layers) {
+    t0 = std::chrono::steady_clock::now();
+    const MapVoxels voxels = map_.occupied_voxels();
+    const GridGeometry grid = GridGeometry::around(estimate.T_W_B.t.head<2>(), config_.grid);
+    const double camera_z = cloud.origin_W.z();
+    HeightMap height = build_height_map(voxels, grid, camera_z, config_.height);
+    UndulationMap undulation = build_undulation_map(height, config_.undulation);
+    CollisionMap collision = build_collision_map(voxels, grid, camera_z, config_.collision);
+    CostMap cost = build_cost_map(collision, undulation, r.uncertainty.sigma_xy, config_.cost);
+    r.layers_ms = ms_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    Esdf2d esdf(config_.esdf);
+    esdf.update(cost);
+    r.esdf_ms = ms_since(t0);
+    local_maps_.emplace(LocalMaps{std::move(height), std::move(undulation), std::move(collision), std::move(cost),
+                                  std::move(esdf)});
+  }
   return r;
 }
 

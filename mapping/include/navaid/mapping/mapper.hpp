@@ -3,14 +3,21 @@
 // voxel map updated (or the frame skipped, counted, when it has no depth, the estimator is not
 // localised, or it is too unsure of the pose). Reads only core types (DESIGN.md §3).
 #include <cstddef>
+#include <optional>
 
 #include "navaid/core/calibration.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/messages.hpp"
 #include "navaid/core/state_estimate.hpp"
+#include "navaid/mapping/collision_map.hpp"
+#include "navaid/mapping/cost_map.hpp"
+#include "navaid/mapping/esdf_2d.hpp"
+#include "navaid/mapping/grid_geometry.hpp"
+#include "navaid/mapping/height_map.hpp"
 #include "navaid/mapping/pose_uncertainty.hpp"
 #include "navaid/mapping/semantic_map.hpp"
 #include "navaid/mapping/semantic_point_cloud.hpp"
+#include "navaid/mapping/undulation_map.hpp"
 
 namespace navaid::mapping {
 
@@ -18,9 +25,27 @@ struct MapperConfig {
   SemanticPointCloudConfig cloud;
   SemanticMapConfig map;
   MappingGateConfig gate;
+  /// Build the 2D layers and the 2D ESDF after every mapped frame (what the planners read).
+  bool layers = true;
+  GridConfig grid;
+  HeightMapConfig height;
+  UndulationConfig undulation;
+  CollisionConfig collision;
+  CostMapConfig cost;
+  Esdf2dConfig esdf;
 };
 
-/// All mapping.cloud.*, mapping.map.* and mapping.gate.* keys.
+/// The 2D maps of the window around the user after the last mapped frame (eLabrador eq. 8-10).
+struct LocalMaps {
+  HeightMap height;
+  UndulationMap undulation;
+  CollisionMap collision;
+  CostMap cost;  ///< inflated by k sigma_xy of the frame's estimate
+  Esdf2d esdf;   ///< over the cost map's obstacles
+};
+
+/// All mapping.* keys of the layers: cloud, map, gate, grid, height, undulation, collision, cost,
+/// esdf, and mapping.layers (true).
 MapperConfig read_mapper_config(const Config& config);
 
 enum class FrameOutcome { kMapped, kNoDepth, kNotLocalised, kTooUncertain };
@@ -32,6 +57,8 @@ struct MapperFrameResult {
   InsertStats insert;
   double cloud_ms = 0.0;   ///< back-projection
   double insert_ms = 0.0;  ///< ray casting + fusion (+ maintenance on its frames)
+  double layers_ms = 0.0;  ///< height, undulation, collision and cost maps
+  double esdf_ms = 0.0;    ///< the 2D ESDF
 };
 
 struct MapperCounters {
@@ -57,6 +84,8 @@ class Mapper {
   const MapperConfig& config() const { return config_; }
   /// Uncertainty of the last estimate processed (for the 2D maps' inflation).
   const PoseUncertainty& last_uncertainty() const { return last_uncertainty_; }
+  /// The 2D maps after the last mapped frame; null before the first or with layers off.
+  const LocalMaps* local_maps() const { return local_maps_ ? &*local_maps_ : nullptr; }
 
  private:
   MapperConfig config_;
@@ -64,6 +93,7 @@ class Mapper {
   SemanticMap map_;
   MapperCounters counters_;
   PoseUncertainty last_uncertainty_;
+  std::optional<LocalMaps> local_maps_;
 };
 
 }  // namespace navaid::mapping
