@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # navaid's main job: a full-device simulated walk (eLabrador Route 1 with the head mount: RGB-D
 # images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode
-# run through the sliding-window estimator and evaluated against ground truth, a small reproduction
+# run through the sliding-window estimator and evaluated against ground truth, the semantic map of
+# the image walk (built during the estimator's run, and again from ground truth), a small reproduction
 # of the RGBD-VIO paper's Table I (navaid reproduce rgbd-vio-table1 --quick), and a summary and
 # plot of real recorded data from ../shared/data (a GNSS receiver capture and the EuRoC V1_02
 # ground truth).
@@ -27,6 +28,10 @@ $NAVAID simulate --scenario route1 --mount head --seed 7 --set duration=40 --cac
   --out "$OUT/sim-route1-head"
 $NAVAID info "$OUT/sim-route1-head" | tee "$OUT/sim-route1-head-info.txt"
 $NAVAID plot "$OUT/sim-route1-head" --out "$OUT/sim-route1-head-track.png"
+
+echo "== Estimator on the 40 s of images with the semantic map built as it goes, and the map from ground truth"
+$NAVAID run --recording "$OUT/sim-route1-head" --out "$OUT/run-route1-head" --set mapping.enabled=true
+$NAVAID map --recording "$OUT/sim-route1-head" --poses groundtruth --out "$OUT/map-route1-head-groundtruth"
 
 echo "== Simulated walk: the whole of route1 in feature mode"
 $NAVAID simulate --scenario route1 --mount head --seed 7 --set simulation.mode=features --out "$OUT/sim-route1-features"

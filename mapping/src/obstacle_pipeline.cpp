@@ -1,5 +1,5 @@
 // The augmented-cane obstacle pipeline on PCL (thesis Ch. 2.2.2, App. D.2); see
-// obstacle_pipeline.hpp for the stages and docs/mapping-obstacle-pipeline.md for the choices.
+// obstacle_pipeline.hpp for the stages and docs/mapping.md ("Obstacle pipeline") for the choices.
 #include "navaid/mapping/obstacle_pipeline.hpp"
 
 #include <algorithm>

@@ -10,7 +10,7 @@
 //
 // Table II's numbers did not survive in the seed text (only its caption), so the defaults below are
 // navaid's own, one per class of core/semantic_classes.hpp, with the reason in the table's
-// comments (collision_map.cpp) and in docs/mapping-grid-layers.md.
+// comments (collision_map.cpp) and in docs/mapping.md ("2D map layers").
 #include <array>
 
 #include "navaid/core/config.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// The BYU augmented-cane obstacle pipeline (thesis Ch. 2.2.2, docs/mapping-obstacle-pipeline.md):
+// The BYU augmented-cane obstacle pipeline (thesis Ch. 2.2.2, docs/mapping.md ("Obstacle pipeline")):
 // points in the camera frame C  ->  approximate voxel grid  ->  RANSAC perpendicular-plane ground
 // fit (checked against a running average of the plane offset, which replaces it when RANSAC fails
 // or finds a table)  ->  ground removal  ->  above-head removal  ->  sensor-to-user alignment
