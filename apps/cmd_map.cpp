@@ -51,6 +51,8 @@ void run_map(const MapArgs& a) {
                 "' (a feature-level recording has nothing to map)");
 
   FramePoses poses;
+  const std::string poses_source =
+      a.poses == "groundtruth" ? a.recording.string() + " (ground truth)" : (a.run / "estimates.csv").string();
   if (a.poses == "groundtruth") {
     poses = poses_from_groundtruth(recording, frames, camera.time_offset_s);
   } else {
@@ -64,8 +66,17 @@ void run_map(const MapArgs& a) {
   Progress progress("mapping", frames.size());
   for (std::size_t i = 0; i < frames.size(); ++i) {
     progress.update(i);
-    if (poses[i]) session.add(frames[i], *poses[i]);
-    else session.add_without_pose();
+    if (!poses[i]) {
+      session.add_without_pose();
+      continue;
+    }
+    try {
+      session.add(frames[i], *poses[i]);
+    } catch (const IoError&) {
+      throw;  // names its own file (an image)
+    } catch (const Error& e) {
+      throw Error(poses_source + ": " + e.what());  // a bad covariance or pose: say where it came from
+    }
   }
   progress.finish();
   nlohmann::ordered_json head;

@@ -3,10 +3,13 @@
 // map from the run's estimates afterwards as during the run, and the errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -87,6 +90,39 @@ TEST_F(MapCli, ARunOfAnotherRecordingIsRejected) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("estimates.csv"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("does not match the recording"), std::string::npos) << r.output;
+}
+
+TEST_F(MapCli, ABadCovarianceInTheRunIsAnErrorNamingTheFile) {
+  // Copy the run and make one estimate's position covariance negative (not positive definite).
+  const fs::path bad = path("bad-run");
+  fs::create_directories(bad);
+  std::istringstream in(read_text(path("run") / "estimates.csv"));
+  std::ostringstream out;
+  std::string line;
+  std::getline(in, line);
+  out << line << "\n";
+  const auto columns = [](const std::string& l) {
+    std::vector<std::string> v;
+    std::stringstream ss(l);
+    for (std::string f; std::getline(ss, f, ',');) v.push_back(f);
+    return v;
+  };
+  const auto header = columns(line);
+  const auto col = std::find(header.begin(), header.end(), "cov_pxx") - header.begin();
+  for (int row = 0; std::getline(in, line); ++row) {
+    auto f = columns(line);
+    if (row == 40) f[static_cast<std::size_t>(col)] = "-0.5";
+    for (std::size_t i = 0; i < f.size(); ++i) out << (i ? "," : "") << f[i];
+    out << "\n";
+  }
+  navaid::testing::write_text(bad / "estimates.csv", out.str());
+  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --run '" + bad.string() + "' --out '" +
+                            path("bad-map").string() + "'");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("estimates.csv"), std::string::npos) << r.output;
+  EXPECT_TRUE(r.output.find("not positive definite") != std::string::npos ||
+              r.output.find("covariance") != std::string::npos)
+      << r.output;
 }
 
 TEST_F(MapCli, UsageErrors) {
