@@ -3,7 +3,6 @@
 #include <cmath>
 #include <fstream>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -13,6 +12,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/mapping/semantic_octree.hpp"
+#include "flat_key_index.hpp"
 
 namespace navaid::mapping {
 
@@ -72,10 +72,18 @@ class TreeOpsT final : public TreeOps {
   InsertStats insert(const SemanticPointCloud& cloud, const Vec3& lo, const Vec3& hi) override {
     InsertStats stats;
     stats.points = cloud.points.size();
+    // The window in key units: rays are cut to it without converting every cell to metres.
+    octomap::OcTreeKey key_lo, key_hi;
+    if (!tree_->coordToKeyChecked(to_point(lo), key_lo) || !tree_->coordToKeyChecked(to_point(hi), key_hi))
+      throw Error("SemanticMap: the window leaves the OctoMap's addressable range");
+    const auto in_window = [&](const octomap::OcTreeKey& k) {
+      return k[0] >= key_lo[0] && k[0] <= key_hi[0] && k[1] >= key_lo[1] && k[1] <= key_hi[1] && k[2] >= key_lo[2] &&
+             k[2] <= key_hi[2];
+    };
     // One ray per distinct endpoint voxel, not per point: at mapping resolutions many pixels share
     // a voxel, and the rays dominate the cost. Each point still casts its class vote in order.
-    slot_of_.clear();
     endpoints_.clear();
+    first_point_.clear();
     point_slot_.assign(cloud.points.size(), kNoSlot);
     for (std::size_t i = 0; i < cloud.points.size(); ++i) {
       const Eigen::Vector3f& p = cloud.points[i].p_W;
@@ -85,26 +93,29 @@ class TreeOpsT final : public TreeOps {
         ++stats.outside_window;
         continue;
       }
-      const auto [it, added] = slot_of_.try_emplace(key, static_cast<std::uint32_t>(endpoints_.size()));
-      if (added) endpoints_.push_back({key, q});
-      point_slot_[i] = it->second;
+      const auto [slot, added] = endpoints_.insert(FlatKeyIndex::pack(key));
+      if (added) first_point_.push_back(q);
+      point_slot_[i] = slot;
     }
     stats.occupied_voxels = endpoints_.size();
 
     const octomap::point3d origin = to_point(cloud.origin_W);
     free_.clear();
-    for (const auto& e : endpoints_) {
-      if (!tree_->computeRayKeys(origin, e.point, ray_)) continue;  // origin outside the tree's range
+    for (const auto& end : first_point_) {
+      if (!tree_->computeRayKeys(origin, end, ray_)) continue;  // origin outside the tree's range
       for (const auto& k : ray_) {
-        if (slot_of_.count(k) == 0 && inside(tree_->keyToCoord(k), lo, hi)) free_.insert(k);
+        if (!in_window(k)) continue;
+        const std::uint64_t packed = FlatKeyIndex::pack(k);
+        if (!endpoints_.contains(packed)) free_.insert(packed);
       }
     }
     stats.free_voxels = free_.size();
     // Lazy updates: inner nodes are refreshed in maintain(); leaves keep their addresses until then
     // (lazy updates expand but never prune), so the node pointers below stay valid.
-    for (const auto& k : free_) tree_->updateNode(k, false, true);
+    for (const std::uint64_t k : free_.keys()) tree_->updateNode(FlatKeyIndex::unpack(k), false, true);
     nodes_.resize(endpoints_.size());
-    for (std::size_t s = 0; s < endpoints_.size(); ++s) nodes_[s] = tree_->updateNode(endpoints_[s].key, true, true);
+    for (std::size_t s = 0; s < endpoints_.size(); ++s)
+      nodes_[s] = tree_->updateNode(FlatKeyIndex::unpack(endpoints_.keys()[s]), true, true);
     if (cloud.labelled) {
       for (std::size_t i = 0; i < cloud.points.size(); ++i) {
         if (point_slot_[i] != kNoSlot) tree_->fuse(nodes_[point_slot_[i]], cloud.points[i].observation);
@@ -164,10 +175,6 @@ class TreeOpsT final : public TreeOps {
 
  private:
   static constexpr std::uint32_t kNoSlot = ~std::uint32_t{0};
-  struct Endpoint {
-    octomap::OcTreeKey key;
-    octomap::point3d point;  ///< the first point that hit the voxel: where its ray ends
-  };
   static MapVoxel voxel(const octomap::point3d& c, double size, const Node& n) {
     const SemanticBelief b = n.belief();
     return {to_vec(c), size, n.getOccupancy(), b.semantic, b.probability};
@@ -175,11 +182,11 @@ class TreeOpsT final : public TreeOps {
 
   std::unique_ptr<Tree> tree_;
   // Scratch kept between frames so that a frame allocates nothing once warm.
-  std::unordered_map<octomap::OcTreeKey, std::uint32_t, octomap::OcTreeKey::KeyHash> slot_of_;
-  std::vector<Endpoint> endpoints_;
+  FlatKeyIndex endpoints_;                    ///< voxels hit, by slot
+  std::vector<octomap::point3d> first_point_;  ///< per slot: the first point that hit it (its ray's end)
   std::vector<std::uint32_t> point_slot_;
   std::vector<Node*> nodes_;
-  octomap::KeySet free_;
+  FlatKeyIndex free_;                         ///< voxels crossed and not hit
   octomap::KeyRay ray_;
 };
 
