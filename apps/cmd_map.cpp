@@ -35,6 +35,8 @@ void run_map(const MapArgs& a) {
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
+  MapSessionOptions options{a.snapshot_every_s, a.png_every_s, 0};
+  read_obstacle_options(config, options);
   config.reject_unknown_keys();
 
   const io::InputKind kind = io::detect_input(a.recording);
@@ -60,7 +62,7 @@ void run_map(const MapArgs& a) {
     poses = poses_from_estimates(frames, experiments::read_estimates_csv(estimates_file), estimates_file);
   }
 
-  MapSessionOptions options{a.snapshot_every_s, a.png_every_s, frames.size()};
+  options.frames_total = frames.size();
   if (a.poses == "run") options.align_to = groundtruth_poses(recording);
   MapSession session(mapper_config, camera, a.recording, a.out, options);
   Progress progress("mapping", frames.size());

@@ -121,6 +121,8 @@ void run(const RunArgs& a) {
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
   const bool mapping_enabled = config.get_bool("mapping.enabled", false);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
+  MapSessionOptions map_options{1.0, 5.0, 0};
+  read_obstacle_options(config, map_options);
   config.reject_unknown_keys();
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
     spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "
@@ -184,8 +186,9 @@ void run(const RunArgs& a) {
                   (input == Input::kFeatures ? "feature observations" : "no depth images"));
     const auto& cams = recording.calibration.cameras;
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
-    map_session.emplace(mapper_config, *cam, a.recording, a.out / "map",
-                        MapSessionOptions{1.0, 5.0, camera_frames, groundtruth_poses(recording)});
+    map_options.frames_total = camera_frames;
+    map_options.align_to = groundtruth_poses(recording);
+    map_session.emplace(mapper_config, *cam, a.recording, a.out / "map", map_options);
     for (const auto& f : recording.frames)
       if (f.camera == camera) frame_at[f.t] = &f;
     pipeline_input.on_estimate = [&](const StateEstimate& e) {

@@ -85,10 +85,18 @@ std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording) {
   return gt;
 }
 
+void read_obstacle_options(const Config& config, MapSessionOptions& options) {
+  if (!config.get_bool("mapping.obstacles.enabled", false)) return;
+  options.obstacles = mapping::read_obstacle_pipeline_config(config);
+  options.obstacle_prior_camera_height_m = config.get_double("mapping.obstacles.prior_camera_height_m",
+                                                             options.obstacle_prior_camera_height_m, {0.05, 5.0});
+}
+
 MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibration& camera,
                        const std::filesystem::path& recording_dir, const std::filesystem::path& out,
                        const MapSessionOptions& options)
     : config_(config),
+      camera_(camera),
       out_(out),
       options_(options),
       mapper_(config, camera),
@@ -99,6 +107,16 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
   std::filesystem::create_directories(out_);
   timing_.open(out_ / "timing.csv");
   if (!timing_) throw IoError((out_ / "timing.csv").string(), "cannot write");
+  if (options.obstacles) {
+    obstacles_.emplace(*options.obstacles);
+    obstacle_csv_.open(out_ / "obstacle_scan.csv");
+    if (!obstacle_csv_) throw IoError((out_ / "obstacle_scan.csv").string(), "cannot write");
+    const auto& o = *options.obstacles;
+    obstacle_csv_ << "t_ns,ground,ransac,obstacle_points,drop_off_points";
+    for (std::size_t b = 0; b < o.scan_bins(); ++b)
+      obstacle_csv_ << fmt::format(",r_{:.0f}", (o.scan_min_bearing_rad + static_cast<double>(b) * o.scan_bin_width_rad) * 180.0 / M_PI);
+    obstacle_csv_ << "\n";
+  }
   timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms,"
              "layers_ms,esdf_ms\n";
 }
@@ -111,6 +129,7 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
   frame.intensity_path.clear();  // the map needs depth, labels and confidence only
   io::load_frame_images(frame);
   const auto r = mapper_.process(frame, estimate);
+  if (obstacles_ && !frame.depth.empty()) scan_obstacles(frame, estimate);
   timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", frame.t, frame.index,
                          outcome_name(r.outcome), r.uncertainty.sigma_xy, r.uncertainty.sigma_yaw * 180.0 / M_PI,
                          r.points, r.insert.occupied_voxels, r.insert.free_voxels, r.cloud_ms, r.insert_ms, r.layers_ms,
@@ -145,6 +164,22 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
                        {"map_bytes", mapper_.map().memory_bytes()}});
     ++next_quarter_;
   }
+}
+
+void MapSession::scan_obstacles(const RgbdFrame& frame, const StateEstimate& estimate) {
+  // Prior T_U_C: the estimate's attitude without its yaw (U looks where the camera looks), the
+  // camera prior_camera_height_m over the ground; the pipeline refines it from the ground plane.
+  const Mat3 R_W_C = estimate.T_W_B.rotation() * camera_.T_B_C.rotation();
+  const Vec3 forward = R_W_C.col(2);
+  const Mat3 R_W_U = Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Vec3::UnitZ()).toRotationMatrix();
+  const SE3 T_U_C_prior(Mat3(R_W_U.transpose() * R_W_C), Vec3(0, 0, options_.obstacle_prior_camera_height_m));
+  const auto scan = obstacles_->process(mapping::camera_points_from_depth(frame, camera_, options_.obstacle_pixel_stride),
+                                        T_U_C_prior, frame.t);
+  obstacle_csv_ << fmt::format("{},{},{},{},{}", frame.t, static_cast<int>(scan.counters.ground_source),
+                               scan.counters.ransac_succeeded ? 1 : 0, scan.counters.obstacle_points,
+                               scan.counters.drop_off_points);
+  for (const float r : scan.ranges) obstacle_csv_ << "," << (std::isfinite(r) ? fmt::format("{:.3f}", r) : std::string());
+  obstacle_csv_ << "\n";
 }
 
 void MapSession::write_layer_pngs(const std::filesystem::path& dir, const std::string& prefix) const {

@@ -18,6 +18,7 @@
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/mapping/map_top_view.hpp"
 #include "navaid/mapping/mapper.hpp"
+#include "navaid/mapping/obstacle_pipeline.hpp"
 
 namespace navaid::cli {
 
@@ -29,7 +30,17 @@ struct MapSessionOptions {
   /// the quality metrics (first-state alignment at the first mapped frame). Empty: the poses are
   /// in the world's frame already (ground-truth poses).
   std::vector<io::StampedPose> align_to = {};
+  /// mapping.obstacles.enabled: also run the BYU obstacle pipeline on every frame with a pose and
+  /// write obstacle_scan.csv (its config: the other mapping.obstacles.* keys).
+  std::optional<mapping::ObstaclePipelineConfig> obstacles = std::nullopt;
+  double obstacle_prior_camera_height_m = 0.8;  ///< the prior T_U_C's height (cane mount)
+  int obstacle_pixel_stride = 1;                ///< the thesis uses every pixel (its voxel grid thins them)
 };
+
+/// The obstacle options of a configuration: mapping.obstacles.enabled (false) and
+/// mapping.obstacles.prior_camera_height_m (0.8 m), mapping.obstacles.pixel_stride (1) besides the
+/// pipeline's own keys.
+void read_obstacle_options(const Config& config, MapSessionOptions& options);
 
 /// The recording's ground truth as stamped poses (for MapSessionOptions::align_to).
 std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording);
@@ -57,7 +68,13 @@ class MapSession {
   /// height, undulation, collision, cost and ESDF PNGs of the last mapped frame's window.
   void write_layer_pngs(const std::filesystem::path& dir, const std::string& prefix) const;
 
+  /// The obstacle scan of one frame (its depth loaded) at the estimate's attitude.
+  void scan_obstacles(const RgbdFrame& frame, const StateEstimate& estimate);
+
   mapping::MapperConfig config_;
+  CameraCalibration camera_;
+  std::optional<mapping::ObstaclePipeline> obstacles_;
+  std::ofstream obstacle_csv_;
   std::filesystem::path out_;
   MapSessionOptions options_;
   mapping::Mapper mapper_;

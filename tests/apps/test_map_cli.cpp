@@ -78,6 +78,32 @@ TEST_F(MapCli, TheRunMapsAsItGoesAndNavaidMapRebuildsTheSameMapFromItsEstimates)
   EXPECT_EQ(read_text(out / "map.ply"), read_text(path("run") / "map" / "map.ply"));
 }
 
+TEST_F(MapCli, TheObstaclePipelineWritesAScanPerFrame) {
+  const fs::path out = path("map-obstacles");
+  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
+                            out.string() + "' --set mapping.obstacles.enabled=true --png-every 0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream csv(read_text(out / "obstacle_scan.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4 + 61);  // five counters, bins -30 .. 30 deg
+  std::size_t rows = 0, ransac = 0, with_obstacles = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::stringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    ransac += f.at(2) == "1";
+    with_obstacles += std::stoul(f.at(3)) > 0;
+  }
+  const auto s = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(rows, s["frames"]["mapped"].get<std::size_t>());
+  EXPECT_GT(ransac, rows * 9 / 10);           // the corridor floor is found
+  EXPECT_GT(with_obstacles, rows * 9 / 10);   // walls and the stations are always in view
+  EXPECT_FALSE(fs::exists(out / "snapshots"));  // --png-every 0: the final PNGs only
+  EXPECT_TRUE(fs::exists(out / "cost.png"));
+}
+
 TEST_F(MapCli, ARunOfAnotherRecordingIsRejected) {
   const fs::path other = path("other");
   ASSERT_EQ(navaid_cli("simulate --scenario corridor --mount cane --seed 4 --threads 1 --out '" + other.string() +
