@@ -24,6 +24,7 @@ struct MapArgs {
   std::vector<std::string> overrides;
   double snapshot_every_s = 1.0;
   double png_every_s = 5.0;
+  bool no_quality = false;
 };
 
 void run_map(const MapArgs& a) {
@@ -35,7 +36,7 @@ void run_map(const MapArgs& a) {
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
-  MapSessionOptions options{a.snapshot_every_s, a.png_every_s, 0};
+  MapSessionOptions options{a.snapshot_every_s, a.png_every_s, !a.no_quality, 0};
   read_obstacle_options(config, options);
   config.reject_unknown_keys();
 
@@ -130,6 +131,8 @@ void add_map_command(CLI::App& app) {
   cmd->add_option("--png-every", a->png_every_s,
                   "Seconds of recording between 2D-map PNGs in snapshots/ (0: only the final ones)")
       ->capture_default_str();
+  cmd->add_flag("--no-quality", a->no_quality,
+                "Skip the comparison with the simulated world (its bookkeeping grows with the route)");
   cmd->callback([a] { run_map(*a); });
 }
 

@@ -121,7 +121,7 @@ void run(const RunArgs& a) {
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
   const bool mapping_enabled = config.get_bool("mapping.enabled", false);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
-  MapSessionOptions map_options{1.0, 5.0, 0};
+  MapSessionOptions map_options{1.0, 5.0, true, 0};
   read_obstacle_options(config, map_options);
   config.reject_unknown_keys();
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)

@@ -101,9 +101,13 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
       options_(options),
       mapper_(config, camera),
       top_view_(config.map.resolution_m),
-      scenario_(recording_scenario(recording_dir)) {
+      scenario_(options.quality ? recording_scenario(recording_dir) : std::nullopt) {
   if (!(options.snapshot_every_s > 0)) throw UsageError("the map snapshot interval must be positive");
-  if (scenario_) quality_ = std::make_unique<experiments::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+  if (scenario_) {
+    quality_ = std::make_unique<experiments::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+    if (!options.align_to.empty())
+      quality_global_ = std::make_unique<experiments::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+  }
   std::filesystem::create_directories(out_);
   timing_.open(out_ / "timing.csv");
   if (!timing_) throw IoError((out_ / "timing.csv").string(), "cannot write");
@@ -117,7 +121,7 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
       obstacle_csv_ << fmt::format(",r_{:.0f}", (o.scan_min_bearing_rad + static_cast<double>(b) * o.scan_bin_width_rad) * 180.0 / M_PI);
     obstacle_csv_ << "\n";
   }
-  timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms,"
+  timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,gated_sigma_xy_m,gated_sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms,"
              "layers_ms,esdf_ms\n";
 }
 
@@ -130,13 +134,14 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
   io::load_frame_images(frame);
   const auto r = mapper_.process(frame, estimate);
   if (obstacles_ && !frame.depth.empty()) scan_obstacles(frame, estimate);
-  timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", frame.t, frame.index,
-                         outcome_name(r.outcome), r.uncertainty.sigma_xy, r.uncertainty.sigma_yaw * 180.0 / M_PI,
+  timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", frame.t,
+                         frame.index, outcome_name(r.outcome), r.uncertainty.sigma_xy,
+                         r.uncertainty.sigma_yaw * 180.0 / M_PI, r.gated.sigma_xy, r.gated.sigma_yaw * 180.0 / M_PI,
                          r.points, r.insert.occupied_voxels, r.insert.free_voxels, r.cloud_ms, r.insert_ms, r.layers_ms,
                          r.esdf_ms);
   if (r.outcome == mapping::FrameOutcome::kMapped) {
-    if (quality_ && !aligned_ && !options_.align_to.empty()) {
-      quality_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
+    if (quality_global_ && !aligned_) {
+      quality_global_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
       aligned_ = true;
     }
     cloud_ms_.push_back(r.cloud_ms);
@@ -153,7 +158,12 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
     if (!last_snapshot_ || frame.t - *last_snapshot_ >= static_cast<Timestamp>(options_.snapshot_every_s * 1e9)) {
       last_snapshot_ = frame.t;
       top_view_.add_voxels(mapper_.map().occupied_voxels(), estimate.T_W_B.t.z() + kTopViewAboveBodyM);
-      if (quality_) quality_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
+      if (quality_) {
+        if (!options_.align_to.empty())
+          quality_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
+        quality_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
+      }
+      if (quality_global_) quality_global_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
     }
   }
   const std::size_t seen = frames_seen_ + no_pose_;
@@ -224,6 +234,7 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
                                    {"max", percentile(total_ms_, 1.0)}};
   j["memory"] = memory_;
   if (quality_) j["quality"] = quality_json(quality_->result(), *scenario_);
+  if (quality_global_) j["quality_global"] = quality_json(quality_global_->result(), *scenario_);
   std::ofstream(out_ / "summary.json") << j.dump(2) << "\n";
   return j;
 }

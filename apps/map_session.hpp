@@ -25,10 +25,13 @@ namespace navaid::cli {
 struct MapSessionOptions {
   double snapshot_every_s = 1.0;  ///< recording seconds between snapshots (top view, quality)
   double png_every_s = 5.0;       ///< recording seconds between 2D-map PNGs (snapshots/); 0: only the last
+  bool quality = true;            ///< compare with the simulated world when the recording has one
   std::size_t frames_total = 0;   ///< for the memory read-outs at 25 / 50 / 75 / 100 % of the route
   /// Estimated poses: the recording's ground truth, to put the map into the simulated world for
-  /// the quality metrics (first-state alignment at the first mapped frame). Empty: the poses are
-  /// in the world's frame already (ground-truth poses).
+  /// the quality metrics. Two alignments: at every snapshot the one that puts the current estimate
+  /// onto the truth ("quality": the map as the user uses it, around where they are, charged with
+  /// the drift within the window), and the one of the first mapped frame ("quality_global": all the
+  /// drift since the start). Empty: the poses are in the world's frame already (ground truth).
   std::vector<io::StampedPose> align_to = {};
   /// mapping.obstacles.enabled: also run the BYU obstacle pipeline on every frame with a pose and
   /// write obstacle_scan.csv (its config: the other mapping.obstacles.* keys).
@@ -80,7 +83,7 @@ class MapSession {
   mapping::Mapper mapper_;
   mapping::MapTopView top_view_;
   std::optional<simulation::Scenario> scenario_;
-  std::unique_ptr<experiments::MapQualityAccumulator> quality_;
+  std::unique_ptr<experiments::MapQualityAccumulator> quality_, quality_global_;
   std::ofstream timing_;
   std::vector<double> cloud_ms_, insert_ms_, layers_ms_, esdf_ms_, total_ms_;
   nlohmann::ordered_json memory_ = nlohmann::ordered_json::array();

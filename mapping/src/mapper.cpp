@@ -32,8 +32,12 @@ MapperFrameResult Mapper::process(const RgbdFrame& frame, const StateEstimate& e
   MapperFrameResult r;
   ++counters_.frames;
   r.uncertainty = pose_uncertainty(estimate);
-  last_uncertainty_ = r.uncertainty;
-  switch (gate(estimate, r.uncertainty, config_.gate)) {
+  r.gated = r.uncertainty;
+  if (config_.gate.scope == UncertaintyScope::kWindow &&
+      estimate.mode != EstimatorMode::kInitializing && estimate.mode != EstimatorMode::kLost)
+    r.gated = uncertainty_window_.add(estimate.t, r.uncertainty, config_.gate.window_s);
+  last_uncertainty_ = r.gated;
+  switch (gate(estimate, r.gated, config_.gate)) {
     case GateDecision::kSkipMode:
       r.outcome = FrameOutcome::kNotLocalised;
       ++counters_.not_localised;
@@ -68,7 +72,7 @@ MapperFrameResult Mapper::process(const RgbdFrame& frame, const StateEstimate& e
     HeightMap height = build_height_map(voxels, grid, camera_z, config_.height);
     UndulationMap undulation = build_undulation_map(height, config_.undulation);
     CollisionMap collision = build_collision_map(voxels, grid, camera_z, config_.collision);
-    CostMap cost = build_cost_map(collision, undulation, r.uncertainty.sigma_xy, config_.cost);
+    CostMap cost = build_cost_map(collision, undulation, r.gated.sigma_xy, config_.cost);
     r.layers_ms = ms_since(t0);
     t0 = std::chrono::steady_clock::now();
     Esdf2d esdf(config_.esdf);

@@ -42,7 +42,23 @@ MappingGateConfig read_mapping_gate_config(const Config& c) {
   g.max_sigma_xy_m = c.get_double("mapping.gate.max_sigma_xy_m", g.max_sigma_xy_m, {0.0, 100.0});
   g.max_sigma_yaw_rad =
       c.get_double("mapping.gate.max_sigma_yaw_deg", g.max_sigma_yaw_rad * 180.0 / M_PI, {0.0, 180.0}) * M_PI / 180.0;
+  g.scope = c.get_string("mapping.gate.scope", "window", {"window", "absolute"}) == "window" ? UncertaintyScope::kWindow
+                                                                                          : UncertaintyScope::kAbsolute;
+  g.window_s = c.get_double("mapping.gate.window_s", g.window_s, {0.1, 3600.0});
   return g;
+}
+
+PoseUncertainty UncertaintyWindow::add(Timestamp t, const PoseUncertainty& u, double window_s) {
+  if (!samples_.empty() && t < samples_.back().t) throw Error("UncertaintyWindow: times must not decrease");
+  samples_.push_back({t, u});
+  // Keep the newest sample at or before t - window: the reference the gain is measured from.
+  const Timestamp start = t - static_cast<Timestamp>(window_s * 1e9);
+  std::size_t first = 0;
+  while (first + 1 < samples_.size() && samples_[first + 1].t <= start) ++first;
+  samples_.erase(samples_.begin(), samples_.begin() + static_cast<std::ptrdiff_t>(first));
+  const PoseUncertainty& ref = samples_.front().u;
+  const auto gain = [](double now, double then) { return std::sqrt(std::max(0.0, now * now - then * then)); };
+  return {gain(u.sigma_xy, ref.sigma_xy), gain(u.sigma_z, ref.sigma_z), gain(u.sigma_yaw, ref.sigma_yaw)};
 }
 
 GateDecision gate(const StateEstimate& e, const PoseUncertainty& u, const MappingGateConfig& g) {

@@ -55,8 +55,14 @@ MapperConfig config() {
   return c;
 }
 
+MapperConfig absolute_config() {
+  MapperConfig c = config();
+  c.gate.scope = UncertaintyScope::kAbsolute;  // one frame per case: no history to take a gain over
+  return c;
+}
+
 TEST(Mapper, SkipsWhatItMustNotMapAndCountsIt) {
-  Mapper mapper(config(), forward_camera());
+  Mapper mapper(absolute_config(), forward_camera());
   EXPECT_EQ(mapper.process(wall_frame(), estimate(0.01, EstimatorMode::kInitializing)).outcome,
             FrameOutcome::kNotLocalised);
   EXPECT_EQ(mapper.process(wall_frame(), estimate(0.01, EstimatorMode::kLost)).outcome, FrameOutcome::kNotLocalised);
@@ -93,7 +99,7 @@ const LocalMaps& maps_of(const Mapper& m) {
 }
 
 TEST(Mapper, ALessSureEstimateBlocksMoreOfTheCostMap) {
-  Mapper sure(config(), forward_camera()), unsure(config(), forward_camera());
+  Mapper sure(absolute_config(), forward_camera()), unsure(absolute_config(), forward_camera());
   sure.process(wall_frame(), estimate(0.01));
   unsure.process(wall_frame(), estimate(0.2));  // under the 0.5 m gate: mapped, but inflated
   const std::size_t a = blocked_cells(maps_of(sure).cost), b = blocked_cells(maps_of(unsure).cost);
@@ -104,6 +110,36 @@ TEST(Mapper, ALessSureEstimateBlocksMoreOfTheCostMap) {
   const auto d_unsure = maps_of(unsure).esdf.distance(Eigen::Vector2d(0.5, 0.0));
   ASSERT_TRUE(d_sure && d_unsure);
   EXPECT_LT(*d_unsure, *d_sure - 0.3);
+}
+
+/// An estimate at t [s] whose horizontal sigma is sigma_xy.
+StateEstimate at(double t_s, double sigma_xy) {
+  StateEstimate e = estimate(sigma_xy);
+  e.t = static_cast<Timestamp>(t_s * 1e9);
+  return e;
+}
+
+TEST(Mapper, WindowScopeGatesOnWhatTheEstimateLostRecentlyAbsoluteOnItsWholeSigma) {
+  // Drift as a visual-inertial estimator's: sigma_xy grows to 1 m over 100 s (random walk:
+  // sigma^2 linear in time). Over a 10 s window it gains sqrt(1 - 0.9) = 0.32 m: still mapped.
+  MapperConfig window = config(), absolute = config();
+  absolute.gate.scope = UncertaintyScope::kAbsolute;
+  absolute.layers = window.layers = false;
+  Mapper w(window, forward_camera()), a(absolute, forward_camera());
+  for (int k = 0; k <= 100; ++k) {
+    const double t = k, sigma = std::sqrt(t / 100.0) + 1e-3;
+    const auto rw = w.process(wall_frame(), at(t, sigma));
+    const auto ra = a.process(wall_frame(), at(t, sigma));
+    EXPECT_EQ(ra.outcome, sigma > 0.5 ? FrameOutcome::kTooUncertain : FrameOutcome::kMapped) << t;
+    EXPECT_EQ(rw.outcome, FrameOutcome::kMapped) << t;
+    EXPECT_LT(rw.gated.sigma_xy, 0.5);
+  }
+  EXPECT_EQ(w.counters().too_uncertain, 0u);
+  EXPECT_EQ(a.counters().too_uncertain, 76u);  // sigma > 0.5 m from t = 25 s on
+  // A jump (the estimator lost its visual track for a moment): 0.3 m -> 1.2 m within a second.
+  const auto jump = w.process(wall_frame(), at(101, 1.2));
+  EXPECT_EQ(jump.outcome, FrameOutcome::kTooUncertain);
+  EXPECT_NEAR(jump.gated.sigma_xy, std::sqrt(1.2 * 1.2 - 0.9), 0.05);
 }
 
 }  // namespace

@@ -52,7 +52,10 @@ enum class FrameOutcome { kMapped, kNoDepth, kNotLocalised, kTooUncertain };
 
 struct MapperFrameResult {
   FrameOutcome outcome = FrameOutcome::kMapped;
-  PoseUncertainty uncertainty;
+  PoseUncertainty uncertainty;  ///< the estimate's own (absolute)
+  /// What the gate and the inflation acted on (MappingGateConfig::scope): the absolute one, or its
+  /// gain over the window.
+  PoseUncertainty gated;
   std::size_t points = 0;  ///< points of the frame's cloud (0 when skipped)
   InsertStats insert;
   double cloud_ms = 0.0;   ///< back-projection
@@ -82,7 +85,7 @@ class Mapper {
   SemanticMap& map() { return map_; }
   const MapperCounters& counters() const { return counters_; }
   const MapperConfig& config() const { return config_; }
-  /// Uncertainty of the last estimate processed (for the 2D maps' inflation).
+  /// Uncertainty the last estimate was gated on (and the 2D maps inflated by).
   const PoseUncertainty& last_uncertainty() const { return last_uncertainty_; }
   /// The 2D maps after the last mapped frame; null before the first or with layers off.
   const LocalMaps* local_maps() const { return local_maps_ ? &*local_maps_ : nullptr; }
@@ -93,6 +96,7 @@ class Mapper {
   SemanticMap map_;
   MapperCounters counters_;
   PoseUncertainty last_uncertainty_;
+  UncertaintyWindow uncertainty_window_;
   std::optional<LocalMaps> local_maps_;
 };
 
