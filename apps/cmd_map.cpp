@@ -7,11 +7,11 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "input_option.hpp"
 #include "map_poses.hpp"
 #include "map_session.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/run_folder.hpp"
-#include "navaid/io/open_input.hpp"
 #include "progress.hpp"
 
 namespace navaid::cli {
@@ -40,10 +40,7 @@ void run_map(const MapArgs& a) {
   read_obstacle_options(config, options);
   config.reject_unknown_keys();
 
-  const io::InputKind kind = io::detect_input(a.recording);
-  if (kind != io::InputKind::kNavaidRecording && kind != io::InputKind::kTumRgbd && kind != io::InputKind::kEuroc)
-    throw IoError(a.recording.string(), "is a " + std::string(io::to_string(kind)) + ", not a recording with frames");
-  const io::Recording recording = io::read_input(a.recording, kind);
+  const io::Recording recording = read_camera_recording(a.recording, "RGB-D frames");
   if (recording.calibration.cameras.empty()) throw Error(a.recording.string() + ": no camera in the calibration");
   const CameraCalibration& camera = recording.calibration.cameras.front();
   std::vector<RgbdFrame> frames;
@@ -98,14 +95,12 @@ void run_map(const MapArgs& a) {
   if (summary.contains("quality")) {
     const auto& q = summary["quality"];
     std::cout << fmt::format("quality: occupancy precision {:.3f}, recall {:.3f}, F1 {:.3f}; semantic accuracy {:.3f}; "
-                             "obstacles detected {:.0f} of {}",
+                             "obstacles detected {} of {}",
                              q["occupancy"]["precision"].get<double>(), q["occupancy"]["recall"].get<double>(),
                              q["occupancy"]["f1"].get<double>(), q["semantic_accuracy"].get<double>(),
-                             q["obstacle_recall"].get<double>() * q["obstacles_in_reach"].get<double>(),
-                             q["obstacles_in_reach"].get<std::size_t>());
+                             q["obstacles_detected"].get<std::size_t>(), q["obstacles_in_reach"].get<std::size_t>());
     if (q["on_path_obstacles_in_reach"].get<std::size_t>() > 0)
-      std::cout << fmt::format(" ({:.0f} of {} on the path)",
-                               q["on_path_obstacle_recall"].get<double>() * q["on_path_obstacles_in_reach"].get<double>(),
+      std::cout << fmt::format(" ({} of {} on the path)", q["on_path_obstacles_detected"].get<std::size_t>(),
                                q["on_path_obstacles_in_reach"].get<std::size_t>());
     std::cout << "\n";
   }

@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "input_option.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
@@ -94,13 +95,6 @@ void write_estimates_csv(const std::filesystem::path& file, const std::vector<St
 // Where the estimator's features come from.
 enum class Input { kFeatures, kImages };
 
-io::Recording read_recording(const std::filesystem::path& path) {
-  const io::InputKind kind = io::detect_input(path);
-  if (kind != io::InputKind::kNavaidRecording && kind != io::InputKind::kEuroc && kind != io::InputKind::kTumRgbd)
-    throw IoError(path.string(), "is a " + std::string(io::to_string(kind)) +
-                                     ", not a recording with IMU and camera data (navaid, EuRoC or TUM RGB-D)");
-  return io::read_input(path, kind);
-}
 
 // Intensity and depth only: labels and confidence are not the estimator's business.
 void load_tracking_images(RgbdFrame& frame) {
@@ -129,7 +123,7 @@ void run(const RunArgs& a) {
                  "weight: it diverged on 4 of 20 Monte-Carlo seeds of lab-walk-1 (docs/estimator.md, Consistency); "
                  "use leaving_anchor=reanchor for Gaussian studies");
 
-  const io::Recording recording = read_recording(a.recording);
+  const io::Recording recording = read_camera_recording(a.recording, "IMU and camera data");
   if (recording.imu.empty()) throw Error(a.recording.string() + ": no IMU data; the estimator needs an IMU");
   if (std::any_of(recording.imu.begin(), recording.imu.end(), [](const ImuSample& s) { return !s.has_gyro; }))
     throw Error(a.recording.string() + ": IMU samples without gyro data (accelerometer only, as TUM RGB-D); the " +

@@ -69,8 +69,10 @@ nlohmann::ordered_json quality_json(const experiments::MapQuality& q, const simu
                          {"detected", d.detected}});
   j["obstacles"] = obstacles;
   j["obstacles_in_reach"] = q.in_reach;
+  j["obstacles_detected"] = q.detected;
   j["obstacle_recall"] = q.deliberate_recall;
   j["on_path_obstacles_in_reach"] = q.on_path_in_reach;
+  j["on_path_obstacles_detected"] = q.on_path_detected;
   j["on_path_obstacle_recall"] = q.on_path_recall;
   j["snapshots"] = q.snapshots;
   return j;

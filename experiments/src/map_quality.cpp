@@ -31,7 +31,7 @@ struct MapQualityAccumulator::Impl {
   MapQualityConfig config;
   long z_lo = 0, z_hi = 0;  ///< truth cells' vertical index range
   std::unordered_map<std::uint64_t, simulation::OccupancyGrid3D> tiles;  ///< key: tile x, y packed
-  std::vector<std::unordered_set<std::uint64_t>> deliberate_cells;
+  std::vector<std::vector<Cell>> deliberate_cells;
   std::vector<DeliberateObstacleResult> deliberate;
   std::unordered_map<std::uint64_t, bool> mapped;     ///< map cell -> a truth voxel is near
   std::unordered_map<std::uint64_t, std::pair<SemanticClass, SemanticClass>> semantics;  ///< truth, map
@@ -125,11 +125,11 @@ MapQualityAccumulator::MapQualityAccumulator(const simulation::Scenario& scenari
     snapped.extend(lo);
     snapped.extend(box.max);
     const auto grid = simulation::voxelize(alone, resolution_m, snapped);
-    std::unordered_set<std::uint64_t> cells;
+    std::vector<Cell> cells;
     for (int z = 0; z < grid.size.z(); ++z)
       for (int y = 0; y < grid.size.y(); ++y)
         for (int x = 0; x < grid.size.x(); ++x)
-          if (grid.occupied(x, y, z)) cells.insert(pack(impl_->cell_of(grid.center(x, y, z))));
+          if (grid.occupied(x, y, z)) cells.push_back(impl_->cell_of(grid.center(x, y, z)));
     DeliberateObstacleResult r;
     r.primitive = index;
     r.on_path = on_path;
@@ -183,10 +183,7 @@ void MapQualityAccumulator::add_snapshot(const mapping::SemanticMap& map, const 
   for (std::size_t i = 0; i < m.deliberate.size(); ++i) {
     auto& d = m.deliberate[i];
     bool reach = false;
-    for (const auto key : m.deliberate_cells[i]) {
-      constexpr long kBias = 1L << 20;
-      const Cell c{static_cast<long>(key & 0x1FFFFF) - kBias, static_cast<long>((key >> 21) & 0x1FFFFF) - kBias,
-                   static_cast<long>((key >> 42) & 0x1FFFFF) - kBias};
+    for (const Cell& c : m.deliberate_cells[i]) {
       if (!near_user(m.center(c))) continue;
       reach = true;
       if (m.near_set(c, occupied)) {
@@ -225,6 +222,8 @@ MapQuality MapQualityAccumulator::result() const {
   }
   q.in_reach = reach;
   q.on_path_in_reach = reach_path;
+  q.detected = found;
+  q.on_path_detected = found_path;
   q.deliberate_recall = reach ? static_cast<double>(found) / static_cast<double>(reach) : 0.0;
   q.on_path_recall = reach_path ? static_cast<double>(found_path) / static_cast<double>(reach_path) : 0.0;
   return q;

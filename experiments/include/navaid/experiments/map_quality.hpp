@@ -53,6 +53,7 @@ struct MapQuality {
   double deliberate_recall = 0;  ///< detected / in reach, all obstacles (0 when none came in reach)
   double on_path_recall = 0;     ///< the same over the deliberate (on-path) obstacles only
   std::size_t in_reach = 0, on_path_in_reach = 0;  ///< the recalls' denominators
+  std::size_t detected = 0, on_path_detected = 0;  ///< and numerators
   std::size_t snapshots = 0;
 };
 
