@@ -64,6 +64,10 @@ class LocalPlanner {
 std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const Config& config);
 std::vector<std::string> local_planner_names();
 
+/// Keys planning.search.max_expansions in [1, 1e9] and planning.search.max_time_s in [0, 3600]
+/// (0: no time limit, so that replay stays deterministic).
+SearchLimits read_search_limits(const Config& config);
+
 /// Polyline length [m].
 double polyline_length(const std::vector<Vec2>& path);
 

@@ -1,0 +1,35 @@
+#include "navaid/planning/local_planner.hpp"
+
+#include <fmt/format.h>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/planning/direction_astar.hpp"
+#include "navaid/planning/grid_astar.hpp"
+
+namespace navaid::planning {
+
+SearchLimits read_search_limits(const Config& config) {
+  SearchLimits l;
+  l.max_expansions = static_cast<std::size_t>(config.get_int(
+      "planning.search.max_expansions", static_cast<long long>(l.max_expansions), 1, 1'000'000'000));
+  l.max_time_s = config.get_double("planning.search.max_time_s", l.max_time_s, {0.0, 3600.0});
+  return l;
+}
+
+std::vector<std::string> local_planner_names() { return {"astar", "direction-astar"}; }
+
+std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const Config& config) {
+  if (name == "astar") return std::make_unique<GridAStarPlanner>(read_grid_astar_config(config));
+  if (name == "direction-astar") return std::make_unique<DirectionAStarPlanner>(read_direction_astar_config(config));
+  std::string names;
+  for (const std::string& n : local_planner_names()) names += (names.empty() ? "" : ", ") + n;
+  throw ConfigError("", "planning.planner", fmt::format("unknown planner '{}' (known: {})", name, names));
+}
+
+double polyline_length(const std::vector<Vec2>& path) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  return length;
+}
+
+}  // namespace navaid::planning
