@@ -16,5 +16,6 @@ void add_reproduce_command(CLI::App& app);
 void add_consistency_command(CLI::App& app);
 void add_init_study_command(CLI::App& app);
 void add_map_command(CLI::App& app);
+void add_plan_command(CLI::App& app);
 
 }  // namespace navaid::cli
