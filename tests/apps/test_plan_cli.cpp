@@ -1,0 +1,91 @@
+// End-to-end tests of `navaid plan`: the real Willow office map and the real geb079 OctoMap,
+// scenario ground truth with a directional subgoal, and every bad input with its message.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using navaid::testing::navaid_cli;
+using navaid::testing::read_text;
+using navaid::testing::ScratchDir;
+
+namespace {
+
+nlohmann::json plan_json(const fs::path& out) { return nlohmann::json::parse(read_text(out / "plan.json")); }
+
+TEST(PlanCli, AStarAndDirectionAStarOnTheRealWillowOfficeMap) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const ScratchDir dir("plan_cli_willow");
+  const std::string map = (navaid::testing::shared_data_dir() / "ros-map-willow/willow-full-0.05.yaml").string();
+  const auto astar = navaid_cli("plan --map '" + map + "' --planner astar --start 10,10,0 --goal 35,40 --out '" +
+                                (dir / "astar").string() + "'");
+  ASSERT_EQ(astar.status, 0) << astar.output;
+  const nlohmann::json a = plan_json(dir / "astar");
+  EXPECT_EQ(a["status"], "found");
+  EXPECT_EQ(a["planner"], "astar");
+  // Through the building's corridors: longer than the straight line (39.05 m), not absurdly.
+  EXPECT_GT(a["length_m"].get<double>(), std::hypot(25.0, 30.0));
+  EXPECT_LT(a["length_m"].get<double>(), 80.0);
+  EXPECT_GT(a["nodes_expanded"].get<int>(), 1000);
+  EXPECT_TRUE(fs::exists(dir / "astar" / "plan.png"));
+  const auto& path = a["path"];
+  EXPECT_NEAR(path.front()[0].get<double>(), 10.025, 1e-9);
+  EXPECT_NEAR(path.back()[1].get<double>(), 40.025, 1e-9);
+
+  const auto direction = navaid_cli("plan --map '" + map + "' --planner direction-astar --start 10,10,0 --direction 90 --out '" +
+                                    (dir / "dir").string() + "'");
+  ASSERT_EQ(direction.status, 0) << direction.output;
+  const nlohmann::json d = plan_json(dir / "dir");
+  EXPECT_EQ(d["status"], "found");
+  EXPECT_LE(d["length_m"].get<double>(), 20.0);  // inside the 10 m window
+}
+
+TEST(PlanCli, AStarAlongTheRealGeb079Corridor) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const ScratchDir dir("plan_cli_geb079");
+  const std::string map = (navaid::testing::shared_data_dir() / "octomap-geb079/geb079.bt").string();
+  const auto run = navaid_cli("plan --map '" + map + "' --start 1,-0.1,0 --goal 9,-0.1 --set mapping.collision.min_relative_height_m=-1.32 --out '" +
+                              dir.path().string() + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json j = plan_json(dir.path());
+  EXPECT_EQ(j["status"], "found");
+  EXPECT_NEAR(j["length_m"].get<double>(), 8.0, 0.5);  // straight down the corridor
+  EXPECT_NE(j["map"].get<std::string>().find("OctoMap"), std::string::npos);
+}
+
+TEST(PlanCli, ReasonsAndErrors) {
+  const ScratchDir dir("plan_cli_errors");
+  const std::string out = " --out '" + dir.path().string() + "'";
+  // On a desk in office1: a plan without a path, exit 4, the reason in the JSON.
+  const auto blocked = navaid_cli("plan --map scenario:office1 --start 2,2,0 --goal 30,30" + out);
+  EXPECT_EQ(blocked.status, 4) << blocked.output;
+  EXPECT_EQ(plan_json(dir.path())["reason"], "start-blocked");
+  const auto off = navaid_cli("plan --map scenario:office1 --start 18.5,5,90 --goal 300,30" + out);
+  EXPECT_EQ(off.status, 4) << off.output;
+  EXPECT_EQ(plan_json(dir.path())["reason"], "off-map");
+  EXPECT_NE(off.output.find("goal (300.00, 30.00) is off the map"), std::string::npos) << off.output;
+
+  const auto unknown_planner = navaid_cli("plan --map scenario:office1 --planner rrt --start 1,1,0 --goal 2,2" + out);
+  EXPECT_EQ(unknown_planner.status, 2);
+  EXPECT_NE(unknown_planner.output.find("unknown planner 'rrt'"), std::string::npos) << unknown_planner.output;
+  const auto no_map = navaid_cli("plan --map /nonexistent/map.yaml --start 1,1,0 --goal 2,2" + out);
+  EXPECT_EQ(no_map.status, 2);
+  EXPECT_NE(no_map.output.find("/nonexistent/map.yaml"), std::string::npos) << no_map.output;
+  const auto both = navaid_cli("plan --map scenario:office1 --start 1,1,0 --goal 2,2 --direction 10" + out);
+  EXPECT_EQ(both.status, 2);
+  EXPECT_NE(both.output.find("exactly one of --goal"), std::string::npos) << both.output;
+  const auto bad_start = navaid_cli("plan --map scenario:office1 --start 1,1 --goal 2,2" + out);
+  EXPECT_EQ(bad_start.status, 2);
+  const auto bad_key = navaid_cli("plan --map scenario:office1 --start 18.5,5,90 --goal 30,35 --set planning.grid.lenght_weight=2" + out);
+  EXPECT_EQ(bad_key.status, 2);
+  EXPECT_NE(bad_key.output.find("lenght_weight"), std::string::npos) << bad_key.output;
+  const auto bad_scenario = navaid_cli("plan --map scenario:mars --start 1,1,0 --goal 2,2" + out);
+  EXPECT_EQ(bad_scenario.status, 2);
+}
+
+}  // namespace
