@@ -16,6 +16,7 @@ PACKAGES=(
   libceres-dev
   liboctomap-dev libdynamicedt3d-dev
   libpcl-dev
+  libvisp-detection-dev libvisp-core-dev libapriltag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
 )

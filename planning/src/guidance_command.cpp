@@ -26,6 +26,8 @@ std::string_view to_string(GuidanceReason reason) {
     case GuidanceReason::kTargetNotSeen: return "target-not-seen";
     case GuidanceReason::kTargetFar: return "target-far";
     case GuidanceReason::kTargetReached: return "target-reached";
+    case GuidanceReason::kTargetInView: return "target-in-view";
+    case GuidanceReason::kTargetRemembered: return "target-remembered";
   }
   return "unknown";
 }

@@ -33,6 +33,8 @@ enum class GuidanceReason {
   kTargetNotSeen,         ///< hand guidance: the target object was never seen
   kTargetFar,             ///< hand guidance case II: seen beyond the depth range, walk towards it
   kTargetReached,         ///< hand guidance: the hand is at the object
+  kTargetInView,          ///< hand guidance case I: detected now, centre from the depth patch
+  kTargetRemembered,      ///< hand guidance case III: not in view, stored centre through the pose
 };
 
 std::string_view to_string(GuidanceAction action);
