@@ -17,5 +17,6 @@ void add_consistency_command(CLI::App& app);
 void add_init_study_command(CLI::App& app);
 void add_map_command(CLI::App& app);
 void add_plan_command(CLI::App& app);
+void add_rumble_command(CLI::App& app);
 
 }  // namespace navaid::cli
