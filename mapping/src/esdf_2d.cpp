@@ -51,22 +51,28 @@ void Esdf2d::update(const CostMap& cost) {
 
 std::optional<double> Esdf2d::distance(const Vec2& p_W) const {
   assert(field_);
+  // The footstep search calls this a few times per primitive: no Cell2s, rows by pointer.
   const GridGeometry& g = field_->geometry();
-  if (!g.contains(g.cell_of(p_W))) return std::nullopt;
+  const double cx = p_W.x() / g.resolution() - g.origin_cell().x();  // continuous cell coordinate + 0.5
+  const double cy = p_W.y() / g.resolution() - g.origin_cell().y();
+  if (!(cx >= 0.0 && cy >= 0.0 && cx < g.width() && cy < g.height())) return std::nullopt;
   // Clamp into the square of cell centres: the border half-cell holds the border values.
-  const Vec2 u = g.continuous_cell(p_W).cwiseMax(Vec2::Zero()).cwiseMin(Vec2(g.width() - 1, g.height() - 1));
-  const int x0 = std::min(static_cast<int>(std::floor(u.x())), std::max(g.width() - 2, 0));
-  const int y0 = std::min(static_cast<int>(std::floor(u.y())), std::max(g.height() - 2, 0));
+  const double ux = std::min(std::max(cx - 0.5, 0.0), static_cast<double>(g.width() - 1));
+  const double uy = std::min(std::max(cy - 0.5, 0.0), static_cast<double>(g.height() - 1));
+  const int x0 = std::min(static_cast<int>(ux), std::max(g.width() - 2, 0));
+  const int y0 = std::min(static_cast<int>(uy), std::max(g.height() - 2, 0));
   const int x1 = std::min(x0 + 1, g.width() - 1);
   const int y1 = std::min(y0 + 1, g.height() - 1);
-  const double fx = u.x() - x0;
-  const double fy = u.y() - y0;
-  const double d00 = field_->at(x0, y0);
-  const double d10 = field_->at(x1, y0);
-  const double d01 = field_->at(x0, y1);
-  const double d11 = field_->at(x1, y1);
+  const double fx = ux - x0;
+  const double fy = uy - y0;
+  const float* row0 = field_->cells().data() + static_cast<std::size_t>(y0) * g.width();
+  const float* row1 = field_->cells().data() + static_cast<std::size_t>(y1) * g.width();
+  const double d00 = row0[x0];
+  const double d10 = row0[x1];
+  const double d01 = row1[x0];
+  const double d11 = row1[x1];
   if (!std::isfinite(d00) || !std::isfinite(d10) || !std::isfinite(d01) || !std::isfinite(d11)) {
-    return static_cast<double>(field_->at(g.cell_of(p_W)));
+    return static_cast<double>(field_->at(static_cast<int>(cx), static_cast<int>(cy)));
   }
   return (1.0 - fy) * ((1.0 - fx) * d00 + fx * d10) + fy * ((1.0 - fx) * d01 + fx * d11);
 }

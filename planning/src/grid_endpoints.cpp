@@ -44,29 +44,11 @@ std::vector<Vec2> cell_path(const mapping::GridGeometry& g, const std::vector<in
 
 template <class State>
 Plan plan_from_search(const mapping::GridGeometry& g, const SearchResult<State>& r) {
-  Plan p;
-  p.status = r.status;
-  p.expanded = r.expanded;
-  p.time_s = r.time_s;
-  switch (r.status) {
-    case SearchStatus::kFound:
-      p.reason = GuidanceReason::kPathFound;
-      p.path_W = cell_path(g, r.path);
-      p.length_m = polyline_length(p.path_W);
-      p.cost = r.cost;
-      break;
-    case SearchStatus::kNoPath:
-      p.reason = GuidanceReason::kNoPath;
-      p.detail = fmt::format("no path: the search exhausted the reachable map ({} cells)", r.expanded);
-      break;
-    case SearchStatus::kExpansionLimit:
-      p.reason = GuidanceReason::kSearchLimit;
-      p.detail = fmt::format("search stopped at its node limit ({} expansions)", r.expanded);
-      break;
-    case SearchStatus::kTimeLimit:
-      p.reason = GuidanceReason::kSearchLimit;
-      p.detail = fmt::format("search stopped at its time limit ({:.3f} s, {} expansions)", r.time_s, r.expanded);
-      break;
+  Plan p = plan_outcome(r.status, r.expanded, r.time_s);
+  if (r.found()) {
+    p.path_W = cell_path(g, r.path);
+    p.length_m = polyline_length(p.path_W);
+    p.cost = r.cost;
   }
   return p;
 }

@@ -5,6 +5,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/direction_astar.hpp"
 #include "navaid/planning/grid_astar.hpp"
+#include "navaid/planning/wpg_planner.hpp"
 
 namespace navaid::planning {
 
@@ -16,14 +17,40 @@ SearchLimits read_search_limits(const Config& config) {
   return l;
 }
 
-std::vector<std::string> local_planner_names() { return {"astar", "direction-astar"}; }
+std::vector<std::string> local_planner_names() { return {"astar", "direction-astar", "wpg"}; }
 
 std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const Config& config) {
   if (name == "astar") return std::make_unique<GridAStarPlanner>(read_grid_astar_config(config));
   if (name == "direction-astar") return std::make_unique<DirectionAStarPlanner>(read_direction_astar_config(config));
+  if (name == "wpg") return std::make_unique<WpgPlanner>(read_wpg_config(config));
   std::string names;
   for (const std::string& n : local_planner_names()) names += (names.empty() ? "" : ", ") + n;
   throw ConfigError("", "planning.planner", fmt::format("unknown planner '{}' (known: {})", name, names));
+}
+
+Plan plan_outcome(SearchStatus status, std::size_t expanded, double time_s) {
+  Plan p;
+  p.status = status;
+  p.expanded = expanded;
+  p.time_s = time_s;
+  switch (status) {
+    case SearchStatus::kFound:
+      p.reason = GuidanceReason::kPathFound;
+      break;
+    case SearchStatus::kNoPath:
+      p.reason = GuidanceReason::kNoPath;
+      p.detail = fmt::format("no path: the search exhausted every reachable node ({} expanded)", expanded);
+      break;
+    case SearchStatus::kExpansionLimit:
+      p.reason = GuidanceReason::kSearchLimit;
+      p.detail = fmt::format("search stopped at its node limit ({} expansions)", expanded);
+      break;
+    case SearchStatus::kTimeLimit:
+      p.reason = GuidanceReason::kSearchLimit;
+      p.detail = fmt::format("search stopped at its time limit ({:.3f} s, {} expansions)", time_s, expanded);
+      break;
+  }
+  return p;
 }
 
 double polyline_length(const std::vector<Vec2>& path) {

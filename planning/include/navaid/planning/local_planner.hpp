@@ -40,6 +40,7 @@ struct Plan {
   GuidanceReason reason = GuidanceReason::kNoPath;  ///< kPathFound when found, else why not
   std::vector<Vec2> path_W;     ///< start ... end (cell centres or footstep positions)
   std::vector<double> yaw_rad;  ///< heading per path point where the planner has one (WPG), else empty
+  std::vector<Vec2> footsteps_W;  ///< the gait points of a footstep planner (WPG), else empty
   double cost = 0.0;            ///< the planner's objective (eq. 11 for Direction A*, eq. 9-10 for WPG)
   double length_m = 0.0;        ///< polyline length of path_W
   std::size_t expanded = 0;     ///< search nodes expanded
@@ -67,6 +68,10 @@ std::vector<std::string> local_planner_names();
 /// Keys planning.search.max_expansions in [1, 1e9] and planning.search.max_time_s in [0, 3600]
 /// (0: no time limit, so that replay stays deterministic).
 SearchLimits read_search_limits(const Config& config);
+
+/// A Plan with a search's status, counters and, when nothing was found, the reason and detail
+/// (no path, node limit, time limit); the planner adds the path when found.
+Plan plan_outcome(SearchStatus status, std::size_t expanded, double time_s);
 
 /// Polyline length [m].
 double polyline_length(const std::vector<Vec2>& path);
