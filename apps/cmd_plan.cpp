@@ -39,6 +39,8 @@ nlohmann::json plan_json(const planning::Plan& p) {
     if (i < p.yaw_rad.size()) q.push_back(planning::rad_to_deg(p.yaw_rad[i]));
     path.push_back(q);
   }
+  nlohmann::json footsteps = nlohmann::json::array();
+  for (const Vec2& f : p.footsteps_W) footsteps.push_back({f.x(), f.y()});
   return {{"status", p.found() ? "found" : "not-found"},
           {"reason", std::string(planning::to_string(p.reason))},
           {"detail", p.detail},
@@ -46,7 +48,8 @@ nlohmann::json plan_json(const planning::Plan& p) {
           {"cost", p.found() ? nlohmann::json(p.cost) : nlohmann::json(nullptr)},
           {"nodes_expanded", p.expanded},
           {"time_ms", 1e3 * p.time_s},
-          {"path", path}};
+          {"path", path},
+          {"footsteps", footsteps}};
 }
 
 int run(const PlanArgs& a) {

@@ -45,7 +45,7 @@ struct WpgConfig {
 
   bool grid_heuristic = true;          ///< coarse-grid distance (grid_distance_heuristic.hpp), else straight
   double heuristic_cell_m = 0.5;       ///< its coarse cell
-  double heuristic_weight = 1.5;
+  double heuristic_weight = 1.2;
   double prune_cell_m = 0.25;          ///< Prune(): one node per cell of this size ...
   int heading_bins = 12;               ///< ... and heading bin (30 deg)
   double goal_tolerance_m = 0.5;       ///< NearEnd(): about one step
