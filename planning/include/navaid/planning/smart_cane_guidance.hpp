@@ -1,0 +1,44 @@
+#pragma once
+// The Smart Cane's guidance loop (seed smart-cane-biped-walking-path-generation, §III-D and
+// §IV): the walking-path generator re-plans inside the 10 m sensing range at 10 Hz (the path
+// guidance chain of path_guidance.hpp with a WPG planner whose horizon is the sensing range and a
+// re-planning period of 0.1 s), the path is followed with the 2 m look-ahead, and the PI heading
+// controller (eq. 1) turns the heading error into the steering motor's command
+// (GuidanceCommand::steering_rad). The uncertainty rules are those of the chain: while the
+// estimate is unsure, or the way is blocked, there is no heading and the controller is reset (no
+// pull toward a direction nobody knows, and no integral carried over a stop).
+#include <memory>
+
+#include "navaid/planning/path_guidance.hpp"
+#include "navaid/planning/pi_heading_controller.hpp"
+#include "navaid/planning/wpg_planner.hpp"
+
+namespace navaid::planning {
+
+struct SmartCaneGuidanceConfig {
+  PathGuidanceConfig guidance;  ///< replan_period_s = 0.1 (10 Hz) by default here
+  WpgConfig wpg;                ///< horizon_m = 10 (the sensing range) by default here
+  PiHeadingConfig pi;
+};
+
+/// Keys planning.guidance.*, planning.follow.*, planning.wpg.*, planning.pi.*, with the two
+/// defaults above (planning.guidance.replan_period_s 0.1, planning.wpg.horizon_m 10).
+SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config);
+
+class SmartCaneGuidance {
+ public:
+  explicit SmartCaneGuidance(const SmartCaneGuidanceConfig& config = default_config());
+
+  /// One cycle: the chain's command plus steering_rad when it says kGo. Needs the ESDF (WPG).
+  GuidanceCommand update(const StateEstimate& estimate, const mapping::CostMap& cost, const mapping::Esdf2d& esdf,
+                         const Subgoal& subgoal);
+
+  const PathGuidance& chain() const { return chain_; }
+  static SmartCaneGuidanceConfig default_config();
+
+ private:
+  PathGuidance chain_;
+  PiHeadingController pi_;
+};
+
+}  // namespace navaid::planning

@@ -1,0 +1,38 @@
+#include "navaid/planning/smart_cane_guidance.hpp"
+
+namespace navaid::planning {
+
+SmartCaneGuidanceConfig SmartCaneGuidance::default_config() {
+  SmartCaneGuidanceConfig c;
+  c.guidance.replan_period_s = 0.1;
+  c.wpg.horizon_m = 10.0;
+  return c;
+}
+
+SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config) {
+  SmartCaneGuidanceConfig c;
+  c.guidance = read_path_guidance_config(config);
+  if (!config.has("planning.guidance.replan_period_s")) c.guidance.replan_period_s = 0.1;
+  c.wpg = read_wpg_config(config);
+  if (!config.has("planning.wpg.horizon_m")) c.wpg.horizon_m = 10.0;
+  c.pi = read_pi_heading_config(config);
+  return c;
+}
+
+SmartCaneGuidance::SmartCaneGuidance(const SmartCaneGuidanceConfig& config)
+    : chain_(config.guidance, std::make_unique<WpgPlanner>(config.wpg)), pi_(config.pi) {}
+
+GuidanceCommand SmartCaneGuidance::update(const StateEstimate& estimate, const mapping::CostMap& cost,
+                                          const mapping::Esdf2d& esdf, const Subgoal& subgoal) {
+  GuidanceCommand cmd = chain_.update(estimate, cost, &esdf, subgoal);
+  if (cmd.action == GuidanceAction::kGo && cmd.heading_rad) {
+    // theta_ref - theta: the look-ahead direction relative to the user's heading.
+    cmd.steering_rad = pi_.update(estimate.t, *cmd.heading_rad);
+  } else {
+    pi_.reset();
+    cmd.steering_rad = 0.0;
+  }
+  return cmd;
+}
+
+}  // namespace navaid::planning
