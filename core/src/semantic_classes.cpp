@@ -36,6 +36,7 @@ constexpr std::array<SemanticClassInfo, kNumSemanticClasses> kClasses{{
     {C::kChair, "chair", {255, 100, 200}},
     {C::kTable, "table", {160, 60, 255}},
     {C::kTactilePaving, "tactile-paving", {255, 215, 0}},
+    {C::kTargetObject, "target-object", {0, 255, 128}},
 }};
 
 constexpr bool ids_match_positions() {

@@ -44,6 +44,7 @@ SemanticCollisionTable make_default_table() {
   set(SemanticClass::kChair, 1.0);          // solid
   set(SemanticClass::kTable, 1.0);          // solid, its top at hip height
   set(SemanticClass::kTactilePaving, 0.0);  // the guidance surface for blind pedestrians
+  set(SemanticClass::kTargetObject, 1.0);   // the object to be grasped: solid, usually on a table
   return t;
 }
 

@@ -93,6 +93,7 @@ ClassProbabilities default_label_accuracy() {
   set(C::kPole, 0.65);
   set(C::kCurb, 0.65);
   set(C::kTactilePaving, 0.6);
+  set(C::kTargetObject, 0.85);  // a box-sized object: a detector-like class, mistaken for its table
   return a;
 }
 
@@ -144,6 +145,12 @@ std::vector<ConfusionPair> default_label_confusions() {
   };
 }
 
+std::vector<ConfusionPair> default_one_way_label_confusions() {
+  // The hand-guidance target is taken for the table it stands on, never the other way round (so
+  // the table's row stays what it was before the class existed).
+  return {{C::kTargetObject, C::kTable, 1.0}};
+}
+
 ClassProbabilities uniform_class_prior() {
   ClassProbabilities p{};
   p.fill(1.0 / static_cast<double>(K));
@@ -179,6 +186,32 @@ void validate(const LabelConfusionConfig& c, const std::string& source) {
       }
     }
     has_partner[idx(p.a)] = has_partner[idx(p.b)] = true;
+  }
+  for (std::size_t i = 0; i < c.one_way_confusions.size(); ++i) {
+    const ConfusionPair& p = c.one_way_confusions[i];
+    const std::string key = "one_way_confusions[" + std::to_string(i) + "]";
+    if (!labelled_class(p.a) || !labelled_class(p.b)) {
+      throw ConfigError(source, key, "expected two labelled classes (not 'unlabeled', ids < " + std::to_string(K) + ")");
+    }
+    if (p.a == p.b) throw ConfigError(source, key, "a class cannot be confused with itself ('" + name(idx(p.a)) + "')");
+    if (!std::isfinite(p.weight) || p.weight <= 0.0) {
+      throw ConfigError(source, key + ".weight", "expected a finite value > 0, found " + str(p.weight));
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      const ConfusionPair& q = c.one_way_confusions[j];
+      if (q.a == p.a && q.b == p.b) {
+        throw ConfigError(source, key,
+                          "duplicates one_way_confusions[" + std::to_string(j) + "] (" + name(idx(p.a)) + " -> " + name(idx(p.b)) + ")");
+      }
+    }
+    for (std::size_t j = 0; j < c.confusions.size(); ++j) {
+      const ConfusionPair& q = c.confusions[j];
+      if ((q.a == p.a && q.b == p.b) || (q.a == p.b && q.b == p.a)) {
+        throw ConfigError(source, key,
+                          "duplicates confusions[" + std::to_string(j) + "] (" + name(idx(p.a)) + " <-> " + name(idx(p.b)) + ")");
+      }
+    }
+    has_partner[idx(p.a)] = true;
   }
   std::array<bool, K> overridden{};
   for (std::size_t i = 0; i < c.row_overrides.size(); ++i) {
@@ -228,10 +261,15 @@ ConfusionMatrix build_confusion_matrix(const LabelConfusionConfig& c) {
     partner_weight[idx(p.a)] += p.weight;
     partner_weight[idx(p.b)] += p.weight;
   }
+  for (const auto& p : c.one_way_confusions) partner_weight[idx(p.a)] += p.weight;
   for (const auto& p : c.confusions) {
     const std::size_t a = idx(p.a), b = idx(p.b);
     m[a][b] += (1.0 - c.accuracy[a]) * p.weight / partner_weight[a];
     m[b][a] += (1.0 - c.accuracy[b]) * p.weight / partner_weight[b];
+  }
+  for (const auto& p : c.one_way_confusions) {
+    const std::size_t a = idx(p.a), b = idx(p.b);
+    m[a][b] += (1.0 - c.accuracy[a]) * p.weight / partner_weight[a];
   }
   for (const auto& o : c.row_overrides) {
     double sum = 0.0;

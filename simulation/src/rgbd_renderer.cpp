@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "navaid/core/errors.hpp"
 
@@ -60,14 +61,52 @@ double surface_texture(const Surface& surface, const Vec3& p_W) {
   return std::clamp(surface.albedo * (0.3 + 1.4 * t), 0.0, 1.0);
 }
 
+double image_reflectance(const Surface& surface, double grey) { return surface.albedo * (0.05 + 0.95 * grey / 255.0); }
+
 RgbdRenderer::RgbdRenderer(const RayCaster& caster, const CameraModel& camera)
-    : caster_(&caster), width_(camera.width()), height_(camera.height()) {
+    : caster_(&caster), camera_(&camera), width_(camera.width()), height_(camera.height()) {
   bearings_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), Vec3::Zero());
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x) {
       const auto b = camera.unproject(CameraModel::Vec2(x, y));
       if (b) bearings_[static_cast<std::size_t>(y) * width_ + x] = *b;
     }
+}
+
+double RgbdRenderer::image_texture(const Primitive& primitive, const ImageU8& img, const SE3& T_W_C,
+                                   std::size_t i) const {
+  const Surface& surface = primitive.surface;
+  const auto& patch = std::get<PlanePatch>(primitive.shape);
+  // The patch in C: its plane n . p = d, and the map from C into the patch frame.
+  const SE3 T_P_C = patch.T_W_P.inverse() * T_W_C;
+  const Mat3 R_P_C = T_P_C.rotation();
+  const Vec3 n_P = Vec3::UnitZ();
+  const Vec3 o_P = T_P_C.t;  // camera centre in P
+  const int x = static_cast<int>(i % static_cast<std::size_t>(width_)), y = static_cast<int>(i / static_cast<std::size_t>(width_));
+  constexpr int S = kImageTextureSupersample;
+  double sum = 0.0;
+  int n = 0;
+  for (int sy = 0; sy < S; ++sy)
+    for (int sx = 0; sx < S; ++sx) {
+      const double u = x + (sx + 0.5) / S - 0.5, v = y + (sy + 0.5) / S - 0.5;
+      const auto b = camera_->unproject(CameraModel::Vec2(u, v));
+      if (!b) continue;
+      const Vec3 d_P = R_P_C * *b;
+      const double denom = n_P.dot(d_P);
+      if (std::abs(denom) < 1e-12) continue;
+      const double s = -n_P.dot(o_P) / denom;
+      if (s <= 0.0) continue;
+      const Vec3 q = o_P + s * d_P;
+      const double cu = (q.x() + patch.half_x) / (2.0 * patch.half_x) * img.width;
+      const double cv = (patch.half_y - q.y()) / (2.0 * patch.half_y) * img.height;
+      const int col = std::clamp(static_cast<int>(std::floor(cu)), 0, img.width - 1);
+      const int row = std::clamp(static_cast<int>(std::floor(cv)), 0, img.height - 1);
+      sum += img.pixels[static_cast<std::size_t>(row) * img.width + col];
+      ++n;
+    }
+  // The centre ray hit the patch, so at least some sub-rays do; fall back to it otherwise.
+  if (n == 0) return image_reflectance(surface, img.pixels[0]);
+  return image_reflectance(surface, sum / n);
 }
 
 RenderedFrame RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& options, const RayCaster* dynamic) const {
@@ -124,10 +163,13 @@ void RgbdRenderer::render(const SE3& T_W_C, const RenderOptions& o, RenderedFram
     }
     if (o.render_labels) out.labels.pixels[i] = static_cast<std::uint8_t>(hit->semantic);
     if (o.render_intensity) {
-      const Surface& surface = hit_caster->world().primitive(hit->primitive).surface;
+      const Primitive& primitive = hit_caster->world().primitive(hit->primitive);
+      const Surface& surface = primitive.surface;
       const double lambert = std::abs(hit->normal.dot(sun));  // two-sided
       const double shade = o.ambient + (1.0 - o.ambient) * lambert;
-      const double v = 255.0 * surface_texture(surface, hit->point) * shade;
+      const ImageU8* image = hit_caster->world().image_texture(hit->primitive);
+      const double albedo = image ? image_texture(primitive, *image, T_W_C, i) : surface_texture(surface, hit->point);
+      const double v = 255.0 * albedo * shade;
       out.intensity.pixels[i] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
     }
   }

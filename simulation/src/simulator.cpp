@@ -15,6 +15,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/navaid_recording.hpp"
+#include "navaid/io/targets_csv.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/simulation/frame_rng.hpp"
 #include "navaid/simulation/render_cache.hpp"
@@ -299,6 +300,16 @@ SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& con
   write_options.overwrite = true;  // the folder was checked above; it now holds our own images
   write_options.images_in_place = true;
   io::write_navaid_recording(rec, out, write_options);
+
+  // Ground truth of the tagged target objects (hand guidance); only scenarios that have them.
+  if (!scenario.targets.empty()) {
+    std::vector<io::TargetGroundTruth> targets;
+    for (const TargetObject& t : scenario.targets)
+      targets.push_back({t.name, t.semantic, t.tag_family, t.tag_id, t.tag_size_m, t.center_W, t.half_extents, t.T_W_tag});
+    io::write_targets_csv(out / io::kTargetsCsv, targets);
+  } else {
+    fs::remove(out / io::kTargetsCsv, ec);  // a stale file of an overwritten recording
+  }
 
   std::vector<io::StampedPose> poses;
   poses.reserve(rec.groundtruth.size());

@@ -217,10 +217,24 @@ std::uint32_t World::add(const Shape& shape, const Surface& surface) {
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
   primitives_.push_back(Primitive{shape, surface});
+  images_.emplace_back();
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif
   return static_cast<std::uint32_t>(primitives_.size() - 1);
+}
+
+std::uint32_t World::add(const Shape& shape, const Surface& surface, ImageTexture image) {
+  if (image) {
+    const ImageU8& img = *image;
+    if (img.width <= 0 || img.height <= 0 || img.channels != 1 ||
+        img.pixels.size() != static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height))
+      invalid("an image texture needs a non-empty one-channel image");
+    if (!std::holds_alternative<PlanePatch>(shape)) invalid("an image texture can only be put on a plane patch");
+  }
+  const std::uint32_t i = add(shape, surface);
+  images_.back() = std::move(image);
+  return i;
 }
 
 void append_triangles(const Shape& shape, std::uint32_t index, const Tessellation& tess, TriangleMesh& mesh) {

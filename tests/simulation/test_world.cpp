@@ -25,8 +25,10 @@ TEST(SemanticClasses, IdsAreStableAndNamesUnique) {
   EXPECT_EQ(static_cast<int>(SemanticClass::kTactilePaving), 24);
   EXPECT_EQ(semantic_class_from_name("tree-trunk"), SemanticClass::kTreeTrunk);
   EXPECT_EQ(semantic_class_name(SemanticClass::kTrafficSign), "traffic-sign");
-  EXPECT_TRUE(is_valid_semantic_id(24));
-  EXPECT_FALSE(is_valid_semantic_id(25));
+  EXPECT_EQ(static_cast<int>(SemanticClass::kTargetObject), 25);  // appended for hand guidance
+  EXPECT_EQ(semantic_class_name(SemanticClass::kTargetObject), "target-object");
+  EXPECT_TRUE(is_valid_semantic_id(25));
+  EXPECT_FALSE(is_valid_semantic_id(26));
 }
 
 TEST(SemanticClasses, UnknownNameThrowsWithKnownList) {

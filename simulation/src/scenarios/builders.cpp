@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/simulation/apriltag_image.hpp"
 
 namespace navaid::simulation::scenarios {
 
@@ -128,6 +133,56 @@ void SceneBuilder::chair(const Vec2& xy, double z0, double yaw) {
       const Vec2 leg = xy + Vec2(c * u - s * v, s * u + c * v);
       oriented_box(Vec3(leg.x(), leg.y(), z0 + 0.205), Vec3(0.02, 0.02, 0.205), yaw, C::kChair, 0.05);
     }
+}
+
+TargetObject SceneBuilder::tagged_box(const std::string& name, const Vec2& xy, double z0, const Vec3& half, double yaw,
+                                      const std::string& family, int tag_id, double tag_size_m, int margin_cells) {
+  const AprilTagFamilyInfo info = apriltag_family_info(family);
+  // The printed card: the pattern (white ring included) plus a margin of white cells, as tags are
+  // printed with a white border wider than the one-cell ring (the quad detector needs a white
+  // frame around the black square where the background is brighter than the card).
+  const ImageU8 pattern = apriltag_cells(family, tag_id);
+  const int cells_across = pattern.width + 2 * margin_cells;
+  auto card_image = std::make_shared<ImageU8>(cells_across, cells_across, 1, std::uint8_t{255});
+  for (int y = 0; y < pattern.height; ++y)
+    for (int x = 0; x < pattern.width; ++x) card_image->at(x + margin_cells, y + margin_cells) = pattern.at(x, y);
+  const double pattern_half = 0.5 * tag_size_m * cells_across / info.width_at_border;
+  if (!(tag_size_m > 0.0) || margin_cells < 0 || pattern_half > half.y() || pattern_half > half.z())
+    throw Error("tagged_box '" + name + "': the tag pattern (" + std::to_string(2.0 * pattern_half) +
+                " m with its margin) does not fit on the box face");
+  TargetObject t;
+  t.name = name;
+  t.center_W = Vec3(xy.x(), xy.y(), z0 + half.z());
+  t.half_extents = half;
+  t.tag_family = family;
+  t.tag_id = tag_id;
+  t.tag_size_m = tag_size_m;
+  Surface body;
+  body.semantic = t.semantic;
+  body.texture_seed = static_cast<std::uint32_t>(world_.size() * 2654435761u + 17u);
+  body.texture_scale = 0.04;
+  body.albedo = 0.55;
+  t.primitives.push_back(world_.add(Box{SE3(yaw_quat(yaw), t.center_W), half}, body));
+  // The tag: a card 2 mm in front of the +x face, upright (picture rows run down along -z).
+  const Vec3 n(std::cos(yaw), std::sin(yaw), 0.0);
+  const Vec3 up = Vec3::UnitZ();
+  Mat3 R_W_P;
+  R_W_P.col(2) = n;
+  R_W_P.col(1) = up;
+  R_W_P.col(0) = up.cross(n);
+  const Vec3 centre = t.center_W + (half.x() + 0.002) * n;
+  Surface card;
+  card.semantic = t.semantic;
+  card.texture_seed = body.texture_seed + 1;
+  card.albedo = 0.9;
+  t.primitives.push_back(world_.add(PlanePatch{SE3(R_W_P, centre), pattern_half, pattern_half}, card,
+                                    std::shared_ptr<const ImageU8>(std::move(card_image))));
+  Mat3 R_W_tag;  // x along the picture's columns, y down the rows, z into the face
+  R_W_tag.col(0) = R_W_P.col(0);
+  R_W_tag.col(1) = -R_W_P.col(1);
+  R_W_tag.col(2) = -R_W_P.col(2);
+  t.T_W_tag = SE3(R_W_tag, centre);
+  return t;
 }
 
 void SceneBuilder::table(const Vec2& center, const Vec2& half, double z0, double yaw) {

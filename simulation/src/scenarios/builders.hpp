@@ -3,6 +3,7 @@
 // indoor furniture made of World primitives (private to the simulation room).
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "navaid/simulation/scenario.hpp"
@@ -76,6 +77,13 @@ class SceneBuilder {
   void wall(const Vec2& a, const Vec2& b, double thickness, double z0, double height,
             const std::vector<std::pair<double, double>>& doors = {}, SemanticClass c = SemanticClass::kWall,
             double texture_scale = 0.1);
+  /// Target object: a box of class target-object standing on z0 at xy, turned by yaw, with the
+  /// AprilTag `tag_id` of `family` (black square `tag_size_m`) printed centred on its +x face (the
+  /// face whose outward normal points along yaw), upright, on a white card 2 mm in front of the
+  /// face: the pattern with its one-cell white ring plus `margin_cells` more white cells around.
+  /// Uses no random numbers, so adding a target leaves the rest of a scene as it was.
+  TargetObject tagged_box(const std::string& name, const Vec2& xy, double z0, const Vec3& half, double yaw,
+                          const std::string& family, int tag_id, double tag_size_m, int margin_cells);
   /// Floor at z0 and (when ceiling_height > 0) ceiling over the rectangle.
   void room_shell(const Vec2& lo, const Vec2& hi, double z0, double ceiling_height, double texture_scale);
 

@@ -1,5 +1,7 @@
 // Hand-held walks in a furnished lab (seed w-roma-rgbd-vio-object-manipulation, Sec. V-A:
 // three short and two long hand-held trajectories in the laboratory, Table I).
+#include <cmath>
+
 #include "navaid/core/errors.hpp"
 #include "scenarios/families.hpp"
 
@@ -90,6 +92,12 @@ void build_lab_walk(Scenario& s, Rng& rng, int index) {
   c.loop = true;
   c.height_m = 1.62;
   s.moving.push_back(c);
+  // The object to reach for (hand guidance, Sec. IV): a 46 cm box on the south desk, tag36h11
+  // id 5 (30 cm black square, on a 45 cm white card) on the face turned towards the start of the
+  // walks, in view from the start until about x = 5.5 on the way east along y = 2.2. Added last
+  // and without random numbers: the rest of the lab is unchanged by it.
+  s.targets.push_back(b.tagged_box("box-on-desk", Vec2(8.0, 0.45), 0.74, Vec3(0.2, 0.23, 0.23),
+                                   std::atan2(1.75, -4.5), "36h11", 5, 0.30, 1));
 }
 
 }  // namespace navaid::simulation::scenarios

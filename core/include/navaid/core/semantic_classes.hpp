@@ -37,10 +37,11 @@ enum class SemanticClass : std::uint8_t {
   kChair = 22,
   kTable = 23,
   kTactilePaving = 24,
+  kTargetObject = 25,  ///< the object the hand-guidance user reaches for (W-ROMA Sec. IV)
 };
 
 /// Number of classes; ids are 0 .. kNumSemanticClasses - 1 without gaps.
-inline constexpr std::size_t kNumSemanticClasses = 25;
+inline constexpr std::size_t kNumSemanticClasses = 26;
 
 struct SemanticClassInfo {
   SemanticClass id;

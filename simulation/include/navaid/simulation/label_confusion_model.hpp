@@ -4,7 +4,8 @@
 //
 // Confusion matrix M[t][p] = P(predicted p | true t): the diagonal is the per-class accuracy a_t;
 // the error mass 1 - a_t is spread over the plausible confusions of t in proportion to their
-// weights (default_label_confusions(), undirected pairs); a row override replaces a whole row.
+// weights (default_label_confusions(), undirected pairs, and one_way_confusions, where only a is
+// taken for b); a row override replaces a whole row.
 // `unlabeled` (id 0) is never predicted and passes through (row 0 = identity).
 //
 // Spatial coherence (a network errs on regions, not on single pixels):
@@ -64,10 +65,14 @@ ClassProbabilities default_label_accuracy();
 ClassProbabilities uniform_class_prior();
 /// Default plausible confusions (docs/semantic-classes.md); e.g. floor <-> ceiling is not among them.
 std::vector<ConfusionPair> default_label_confusions();
+/// Default one-way confusions (a taken for b, b's row left alone): target-object -> table, a small
+/// object taken for the table it stands on, while a table is not taken for the object.
+std::vector<ConfusionPair> default_one_way_label_confusions();
 
 struct LabelConfusionConfig {
   ClassProbabilities accuracy = default_label_accuracy();  ///< a_t in (0, 1]; unlabeled must be 1
   std::vector<ConfusionPair> confusions = default_label_confusions();
+  std::vector<ConfusionPair> one_way_confusions = default_one_way_label_confusions();
   std::vector<ConfusionRowOverride> row_overrides;
   /// Prior over true classes for posterior() (>= 0, not all 0; normalized); uniform by default.
   ClassProbabilities prior = uniform_class_prior();
@@ -79,7 +84,7 @@ struct LabelConfusionConfig {
 };
 
 /// Throws ConfigError(source, key, ...) naming the first bad key (e.g. "accuracy.pole",
-/// "confusions[3].weight", "row_overrides[0]", "prior.road", "cell_size_px").
+/// "confusions[3].weight", "one_way_confusions[0]", "row_overrides[0]", "prior.road", "cell_size_px").
 void validate(const LabelConfusionConfig& config, const std::string& source = "label_confusion");
 
 /// The matrix of a config (validated first).

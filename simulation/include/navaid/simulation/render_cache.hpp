@@ -19,7 +19,7 @@
 namespace navaid::simulation {
 
 /// Bump when the renderer's output changes for the same inputs: old cache entries stop matching.
-constexpr int kRendererVersion = 1;
+constexpr int kRendererVersion = 2;  // 2: image-textured plane patches (AprilTag targets)
 
 /// Depth quantum [m] of cached (and simulated) clean depth for a largest rendered depth.
 double cache_depth_unit_m(double max_depth_m);

@@ -7,7 +7,10 @@
 //    no_hit_class (default sky) where nothing is hit, unlabeled where the pixel has no bearing;
 //  - intensity: procedural texture of the hit primitive evaluated at the 3D hit point (stable
 //    across viewpoints, so features can be tracked) times Lambertian shading from a fixed sun plus
-//    ambient; sky_intensity where nothing is hit.
+//    ambient; sky_intensity where nothing is hit. A plane patch with an image texture
+//    (World::image_texture, e.g. an AprilTag) is box-filtered over the pixel: the mean of
+//    kImageTextureSupersample^2 sub-pixel rays intersected with the patch's plane, each reading
+//    the nearest texel (clamped to the picture's border).
 // Sensor noise is applied separately. Rendering is single-threaded and deterministic.
 #include <cstdint>
 #include <memory>
@@ -19,6 +22,9 @@
 #include "navaid/simulation/ray_caster.hpp"
 
 namespace navaid::simulation {
+
+/// Sub-pixel rays per axis on image-textured patches.
+inline constexpr int kImageTextureSupersample = 4;
 
 struct RenderOptions {
   double min_depth = 0.1;   ///< [m], depth below this is reported as 0
@@ -61,7 +67,11 @@ class RgbdRenderer {
   int height() const { return height_; }
 
  private:
+  /// Reflectance of an image-textured plane patch over pixel i (box filter, see above).
+  double image_texture(const Primitive& primitive, const ImageU8& image, const SE3& T_W_C, std::size_t i) const;
+
   const RayCaster* caster_;
+  const CameraModel* camera_;
   int width_, height_;
   std::vector<Vec3> bearings_;
 };

@@ -43,6 +43,23 @@ World moving_world(const std::vector<MovingObject>& objects, double t_s);
 
 enum class ScenarioKind { kWalk, kPlannerMap };
 
+/// An object the hand-guidance user reaches for (W-ROMA Sec. IV), with an AprilTag printed on one
+/// face; its primitives carry the target-object class. Ground truth of `navaid simulate`
+/// (targets.csv, docs/recording-format.md).
+struct TargetObject {
+  std::string name;                  ///< e.g. "box-on-desk"
+  SemanticClass semantic = SemanticClass::kTargetObject;
+  Vec3 center_W = Vec3::Zero();      ///< centre of the object [m]
+  Vec3 half_extents = Vec3::Zero();  ///< of the object's box, along its axes [m]
+  std::string tag_family = "36h11";
+  int tag_id = 0;
+  double tag_size_m = 0.0;           ///< side of the tag's black square [m]
+  /// Tag frame as AprilTag detectors report it (apriltag_image.hpp): origin at the tag's centre on
+  /// the face, x right and y down across the printed face, z into the face.
+  SE3 T_W_tag;
+  std::vector<std::uint32_t> primitives;  ///< the object's and the tag's primitives
+};
+
 struct Scenario {
   std::string name, description;
   ScenarioKind kind = ScenarioKind::kWalk;
@@ -60,6 +77,8 @@ struct Scenario {
   /// Obstacles placed beside the path for the user to avoid (the path keeps its clearance from
   /// them): the corridor's stations, the obstacle course's waist-high hanging obstacle.
   std::vector<std::uint32_t> placed_obstacles;
+  /// Tagged target objects for hand guidance (the lab walks have one).
+  std::vector<TargetObject> targets;
 };
 
 struct ScenarioOptions {

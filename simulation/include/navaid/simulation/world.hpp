@@ -4,12 +4,14 @@
 // triangulated into one mesh for ray casting (ray_caster.hpp). Frame: W, z up, metres.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <variant>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "navaid/core/geometry.hpp"
+#include "navaid/core/image.hpp"
 #include "navaid/simulation/semantic_classes.hpp"
 
 namespace navaid::simulation {
@@ -23,6 +25,13 @@ struct Surface {
   double texture_scale = 0.2;      ///< size of a texture cell [m], > 0
   double albedo = 0.7;             ///< mean reflectance in (0, 1]
 };
+
+/// Image texture of a plane patch (World::add with an image): a one-channel picture printed over
+/// the whole rectangle, 0 = black ink, 255 = white, replacing the procedural texture (reflectance
+/// = albedo x (0.05 + 0.95 v / 255)). Seen from the patch's +z side the picture is upright and
+/// unmirrored: column 0 at x = -half_x, row 0 at y = +half_y. Shared, not copied, between copies
+/// of a world.
+using ImageTexture = std::shared_ptr<const ImageU8>;
 
 /// Rectangle in the x-y plane of its pose, centred at the pose origin, normal = pose z axis.
 struct PlanePatch {
@@ -91,6 +100,11 @@ class World {
   /// extents, non-finite values, polygon with < 3 vertices or zero area, z_max <= z_min) or
   /// surface (texture_scale <= 0, albedo outside (0, 1]).
   std::uint32_t add(const Shape& shape, const Surface& surface);
+  /// Same with an image texture (may be null: none). Throws navaid::Error when the image is empty,
+  /// has more than one channel, or the shape is not a plane patch.
+  std::uint32_t add(const Shape& shape, const Surface& surface, ImageTexture image);
+  /// The image texture of primitive i, null when it has none.
+  const ImageU8* image_texture(std::uint32_t i) const { return images_.at(i).get(); }
 
   const std::vector<Primitive>& primitives() const { return primitives_; }
   const Primitive& primitive(std::uint32_t i) const { return primitives_.at(i); }
@@ -105,6 +119,7 @@ class World {
 
  private:
   std::vector<Primitive> primitives_;
+  std::vector<ImageTexture> images_;  ///< one per primitive, null for none
 };
 
 /// Triangulation of one primitive appended to mesh, tagged with primitive index `index`.
