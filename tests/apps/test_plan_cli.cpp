@@ -58,6 +58,48 @@ TEST(PlanCli, AStarAlongTheRealGeb079Corridor) {
   EXPECT_NE(j["map"].get<std::string>().find("OctoMap"), std::string::npos);
 }
 
+TEST(PlanCli, WalkingPathGeneratorOnTheRealWillowMapAndTheGeb079Corridor) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const ScratchDir dir("plan_cli_wpg");
+  const std::string willow = (navaid::testing::shared_data_dir() / "ros-map-willow/willow-full-0.05.yaml").string();
+  // From the west corridor to a room in the north-east: footsteps all the way.
+  const auto wpg = navaid_cli("plan --map '" + willow + "' --planner wpg --start 5.6,20,90 --goal 35,40 --out '" +
+                              (dir / "wpg").string() + "'");
+  ASSERT_EQ(wpg.status, 0) << wpg.output;
+  const nlohmann::json w = plan_json(dir / "wpg");
+  EXPECT_EQ(w["status"], "found");
+  EXPECT_EQ(w["planner"], "wpg");
+  EXPECT_GT(w["length_m"].get<double>(), std::hypot(29.4, 20.0));
+  EXPECT_LT(w["length_m"].get<double>(), 90.0);
+  EXPECT_EQ(w["footsteps"].size(), w["path"].size());
+  EXPECT_EQ(w["path"][0].size(), 3U);  // x, y and the walking direction
+  const auto astar = navaid_cli("plan --map '" + willow + "' --planner astar --start 5.6,20,90 --goal 35,40 " +
+                                "--set planning.grid.base_clearance_m=0.3 --out '" + (dir / "astar").string() + "'");
+  ASSERT_EQ(astar.status, 0) << astar.output;
+  // Footsteps of half a metre against cells of 5 cm: far fewer nodes.
+  EXPECT_LT(10 * w["nodes_expanded"].get<int>(), plan_json(dir / "astar")["nodes_expanded"].get<int>());
+
+  // Re-planning inside the 10 m range toward a direction.
+  const auto dir90 = navaid_cli("plan --map '" + willow + "' --planner wpg --start 5.6,20,90 --direction 90 " +
+                                "--set planning.wpg.horizon_m=10 --out '" + (dir / "dir").string() + "'");
+  ASSERT_EQ(dir90.status, 0) << dir90.output;
+  const nlohmann::json d = plan_json(dir / "dir");
+  const auto& end = d["path"].back();
+  EXPECT_GE(std::hypot(end[0].get<double>() - 5.6, end[1].get<double>() - 20.0), 10.0);
+  EXPECT_GT(end[1].get<double>(), 27.0);  // northward
+
+  const std::string geb079 = (navaid::testing::shared_data_dir() / "octomap-geb079/geb079.bt").string();
+  const auto corridor = navaid_cli("plan --map '" + geb079 + "' --planner wpg --start 1,-0.1,0 --goal 9,-0.1 " +
+                                   "--set mapping.collision.min_relative_height_m=-1.32 --out '" + (dir / "geb").string() + "'");
+  ASSERT_EQ(corridor.status, 0) << corridor.output;
+  EXPECT_NEAR(plan_json(dir / "geb")["length_m"].get<double>(), 8.0, 0.6);
+  // Without the ESDF clearance a start in the wall is refused with its reason.
+  const auto in_wall = navaid_cli("plan --map scenario:office1 --planner wpg --start 2,2,0 --goal 30,30 --out '" +
+                                  (dir / "blocked").string() + "'");
+  EXPECT_EQ(in_wall.status, 4) << in_wall.output;
+  EXPECT_EQ(plan_json(dir / "blocked")["reason"], "start-blocked");
+}
+
 TEST(PlanCli, ReasonsAndErrors) {
   const ScratchDir dir("plan_cli_errors");
   const std::string out = " --out '" + dir.path().string() + "'";
