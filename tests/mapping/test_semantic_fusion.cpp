@@ -59,8 +59,9 @@ TEST(BayesianHistogramFusion, TwoAgreeingVotesMultiply) {
   BayesianHistogramFusion::State s;
   BayesianHistogramFusion::fuse(s, {C::kCar, 0.6f}, {});
   BayesianHistogramFusion::fuse(s, {C::kCar, 0.6f}, {});
-  const double other = 0.4 / 23.0;
-  const double expected = 0.36 / (0.36 + 23.0 * other * other);
+  const double others = static_cast<double>(kNumSemanticClasses) - 2.0;  // labelled classes but car
+  const double other = 0.4 / others;
+  const double expected = 0.36 / (0.36 + others * other * other);
   EXPECT_NEAR(BayesianHistogramFusion::belief(s).probability, expected, 1e-5);
 }
 
