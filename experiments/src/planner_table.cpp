@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -99,8 +100,15 @@ MapResult run_map(const PlannerTableSpec& spec, const PlannerTableMap& map, std:
 
   std::vector<std::unique_ptr<planning::LocalPlanner>> planners;
   std::vector<const planning::LocalPlanner*> raw;
+  for (const auto& [name, overrides] : map.set) {
+    if (std::none_of(spec.planners.begin(), spec.planners.end(), [&](const auto& p) { return p.name == name; }))
+      throw ConfigError(spec_file.string(), "maps." + map.name + ".set", "names no planner '" + name + "'");
+  }
   for (const PlannerTablePlanner& p : spec.planners) {
-    const Config c = Config::parse("{}", spec_file.string(), p.set);
+    std::vector<std::string> overrides = p.set;
+    if (const auto it = map.set.find(p.name); it != map.set.end())
+      overrides.insert(overrides.end(), it->second.begin(), it->second.end());
+    const Config c = Config::parse("{}", spec_file.string(), overrides);
     planners.push_back(planning::make_local_planner(p.planner, c));
     c.reject_unknown_keys();
     raw.push_back(planners.back().get());
@@ -294,6 +302,7 @@ PlannerTableSpec read_planner_table_spec(const fs::path& file) {
     if (m["resolution_m"]) map.resolution_m = field<double>(m, "resolution_m", f, where);
     if (m["min_distance_m"]) map.min_distance_m = field<double>(m, "min_distance_m", f, where);
     if (!(map.resolution_m > 0.0)) throw ConfigError(f, where + "resolution_m", "must be > 0");
+    if (m["set"]) map.set = field<std::map<std::string, std::vector<std::string>>>(m, "set", f, where);
     s.maps.push_back(map);
   }
   if (!root["planners"] || !root["planners"].IsSequence() || root["planners"].size() < 2)

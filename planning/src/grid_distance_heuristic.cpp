@@ -25,15 +25,17 @@ GridDistanceHeuristic::GridDistanceHeuristic(const mapping::Esdf2d& esdf, const 
   if (gx < 0 || gy < 0 || gx >= nx_ || gy >= ny_) return;
   const int goal = gy * nx_ + gx;
   distance_[static_cast<std::size_t>(goal)] = 0.0F;
-  open_.push({to_start(goal), goal});
+  open_.push({to_start(goal), 0.0F, goal});
   // Cells whose way to the goal is this long do not matter to a search from the start.
   f_limit_ = 4.0F * to_start(goal) + 8.0F * static_cast<float>(cell_);
 }
 
 float GridDistanceHeuristic::to_start(int cell) const {
-  const double dx = cell % nx_ - start_x_;
-  const double dy = cell / nx_ - start_y_;
-  return static_cast<float>(cell_ * std::sqrt(dx * dx + dy * dy));
+  // Octile distance: the exact cost of the 8-connected moves in free space, so the search runs
+  // along the corridor instead of flooding the ellipse that the straight distance leaves.
+  const double dx = std::abs(cell % nx_ - start_x_);
+  const double dy = std::abs(cell / nx_ - start_y_);
+  return static_cast<float>(cell_ * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy)));
 }
 
 bool GridDistanceHeuristic::passable(int cell) {
@@ -59,13 +61,15 @@ bool GridDistanceHeuristic::passable(int cell) {
   return kind == kPassable;
 }
 
-void GridDistanceHeuristic::settle_until(int cell) {
+void GridDistanceHeuristic::settle_until(int cell, std::size_t budget) {
   static constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
   static constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   const float straight = static_cast<float>(cell_);
   const float diagonal = static_cast<float>(cell_ * std::sqrt(2.0));
-  while (!open_.empty() && !settled_[static_cast<std::size_t>(cell)] && open_.top().first <= f_limit_) {
-    const int i = open_.top().second;
+  const std::size_t stop = settled_count_ + budget;
+  while (!open_.empty() && !settled_[static_cast<std::size_t>(cell)] && open_.top().f <= f_limit_ &&
+         settled_count_ < stop) {
+    const int i = open_.top().cell;
     open_.pop();
     if (settled_[static_cast<std::size_t>(i)]) continue;
     const float d = distance_[static_cast<std::size_t>(i)];
@@ -84,18 +88,24 @@ void GridDistanceHeuristic::settle_until(int cell) {
       const float nd = d + (k < 4 ? straight : diagonal);
       if (nd < distance_[static_cast<std::size_t>(n)]) {
         distance_[static_cast<std::size_t>(n)] = nd;
-        open_.push({nd + to_start(n), n});
+        open_.push({nd + to_start(n), nd, n});
       }
     }
   }
 }
 
 double GridDistanceHeuristic::coarse_distance(int cell) {
-  settle_until(cell);
-  if (settled_[static_cast<std::size_t>(cell)]) return distance_[static_cast<std::size_t>(cell)];
+  const auto c = static_cast<std::size_t>(cell);
+  // On the frontier the tentative distance is a real coarse path's length: good enough for a
+  // heuristic, and no resumption (the footstep search mostly asks about cells beside the corridor).
+  if (!settled_[c] && std::isfinite(distance_[c])) return distance_[c];
+  settle_until(cell, first_query_ ? std::numeric_limits<std::size_t>::max() : kResumeBudget);
+  first_query_ = false;
+  if (settled_[c] || std::isfinite(distance_[c])) return distance_[c];
   if (open_.empty()) return std::numeric_limits<double>::infinity();  // not connected to the goal
-  // Stopped at the limit: an unsettled cell's distance is at least (frontier f) - (its h).
-  return std::max(0.0, static_cast<double>(open_.top().first) - to_start(cell));
+  // Stopped at the limit or the budget: an unsettled cell's distance is at least (frontier f) -
+  // (its h).
+  return std::max(0.0, static_cast<double>(open_.top().f) - to_start(cell));
 }
 
 double GridDistanceHeuristic::at(const mapping::Vec2& p_W) {

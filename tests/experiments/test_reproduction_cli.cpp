@@ -114,4 +114,10 @@ TEST(ReproduceCli, SmartCaneTable1BadSpecsAreClearErrors) {
                                 "' --out '" + (dir / "o3").string() + "'");
   EXPECT_EQ(nomap.status, 2);
   EXPECT_NE(nomap.output.find("atlantis"), std::string::npos) << nomap.output;
+  write_text(dir / "badset.yaml",
+             "maps: [{name: pillar, set: {rrt: [a=1]}}]\nplanners: [{name: wpg}, {name: astar}]\n");
+  const auto badset = navaid_cli("reproduce smart-cane-table1 --matrix '" + (dir / "badset.yaml").string() +
+                                 "' --out '" + (dir / "o4").string() + "'");
+  EXPECT_EQ(badset.status, 2);
+  EXPECT_NE(badset.output.find("names no planner 'rrt'"), std::string::npos) << badset.output;
 }

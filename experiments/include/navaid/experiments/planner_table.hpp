@@ -21,6 +21,8 @@ struct PlannerTableMap {
   std::string scenario;
   double resolution_m = 0.1;
   double min_distance_m = 10.0;  ///< straight start-goal distance of the pairs
+  /// Config overrides for one planner on this map only, by planner name (YAML `set: {wpg: [...]}`).
+  std::map<std::string, std::vector<std::string>> set;
 };
 
 struct PlannerTablePlanner {

@@ -8,11 +8,13 @@
 // from the goal. Where the coarse distance is below the straight distance the straight distance
 // is used, and one coarse-cell diagonal is taken off the coarse distance.
 //
-// The coarse search runs from the goal toward the footstep search's start, as A* with the straight
+// The coarse search runs from the goal toward the footstep search's start, as A* with the octile
 // distance to the start (consistent, so a settled cell's distance is exact), and is resumed on
 // demand (reverse resumable A*, Silver 2005): a query continues it until the queried cell is
 // settled. Coarse cells are classified when the search first reaches them. So the work follows the
-// corridor the footstep search walks rather than the area of the map.
+// corridor the footstep search walks rather than the area of the map. A cell on the search's
+// frontier answers with its tentative distance (the length of a real coarse path), and a resumed
+// query settles at most kResumeBudget cells (the first query, the start, settles whatever it takes).
 #include <limits>
 #include <queue>
 #include <vector>
@@ -40,7 +42,11 @@ class GridDistanceHeuristic {
  private:
   enum : std::uint8_t { kUnknown = 0, kPassable = 1, kBlocked = 2 };
   bool passable(int cell);
-  void settle_until(int cell);
+  void settle_until(int cell, std::size_t budget);
+  /// The first query (the start) settles its cell whatever it takes; later ones resume the
+  /// search by at most this many cells, then fall back to the bound the search has proven.
+  static constexpr std::size_t kResumeBudget = 256;
+  bool first_query_ = true;
 
   const mapping::Esdf2d& esdf_;
   float to_start(int cell) const;
@@ -55,8 +61,15 @@ class GridDistanceHeuristic {
   std::vector<float> distance_;
   std::vector<std::uint8_t> settled_;
   std::vector<std::uint8_t> kind_;
-  using Entry = std::pair<float, int>;  // (f = distance + straight distance to the start, cell)
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open_;
+  struct Entry {
+    float f;  ///< distance + octile distance to the start
+    float g;  ///< distance (ties: the deeper entry first)
+    int cell;
+  };
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const { return a.f != b.f ? a.f > b.f : a.g < b.g; }
+  };
+  std::priority_queue<Entry, std::vector<Entry>, Later> open_;
   std::size_t settled_count_ = 0;
   float f_limit_ = 0.0F;
 };
