@@ -3,7 +3,8 @@
 # images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode
 # run through the sliding-window estimator and evaluated against ground truth, the semantic map of
 # the image walk (built during the estimator's run, and again from ground truth), a small reproduction
-# of the RGBD-VIO paper's Table I (navaid reproduce rgbd-vio-table1 --quick), and a summary and
+# of the RGBD-VIO paper's Table I (navaid reproduce rgbd-vio-table1 --quick), the Smart Cane paper's
+# Table I (A* vs the walking-path generator) with plans on the real Willow office map, and a summary and
 # plot of real recorded data from ../shared/data (a GNSS receiver capture and the EuRoC V1_02
 # ground truth).
 # Usage: bash scripts/main-job.sh [OUT_DIR]   (default out/main-job)
@@ -44,6 +45,15 @@ $NAVAID eval --est "$OUT/run-route1/trajectory.tum" --gt "$OUT/sim-route1-featur
 
 echo "== RGBD-VIO Table I, small version: RGBD-VIO vs VINS-Fusion (RGB-D) vs VINS-RGBD on two lab walks"
 $NAVAID reproduce rgbd-vio-table1 --quick --jobs 2 --out "$OUT/reproduce-rgbd-vio-table1-quick"
+
+echo "== Smart Cane Table I: A* vs the walking-path generator on office1, office2, pillar, school (30 pairs each)"
+$NAVAID reproduce smart-cane-table1 --out "$OUT/reproduce-smart-cane-table1"
+
+echo "== Walking-path generator and A* across the real Willow office map"
+$NAVAID plan --map "$DATA/ros-map-willow/willow-full-0.05.yaml" --planner wpg --start 5.6,20,90 --goal 35,40 \
+  --out "$OUT/plan-willow-wpg"
+$NAVAID plan --map "$DATA/ros-map-willow/willow-full-0.05.yaml" --planner astar --start 5.6,20,90 --goal 35,40 \
+  --set planning.grid.base_clearance_m=0.3 --out "$OUT/plan-willow-astar"
 
 echo "== GNSS capture: summary, conversion to a navaid recording, ENU track"
 $NAVAID info "$DATA/gpsd-nmea/haicom-305N.log" | tee "$OUT/gnss-capture-info.txt"
