@@ -331,7 +331,9 @@ void run(const HandGuideArgs& a) {
     t["detected_out_of_view"] = detected_out_of_view;
     auto& bins = t["in_view_by_distance"];
     for (std::size_t b = 0; b < kBins.size(); ++b) {
-      const std::string label = b + 1 < kBins.size() ? fmt::format("<{}m", kBins[b]) : fmt::format(">={}m", kBins[b - 1]);
+      const std::string label = b == 0                   ? fmt::format("0-{}m", kBins[b])
+                                : b + 1 < kBins.size() ? fmt::format("{}-{}m", kBins[b - 1], kBins[b])
+                                                       : fmt::format(">={}m", kBins[b - 1]);
       bins[label] = {{"in_view", bin_in_view[b]}, {"detected", bin_detected[b]}};
     }
     t["centre_error_px"] = centre_error_px.json();
