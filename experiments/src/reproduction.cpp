@@ -68,36 +68,37 @@ PlannerTableEntry smart_cane_table1_entry() {
   return e;
 }
 
+Reproduction entry(std::string name, std::string title, std::string paper, std::string produces, std::string runs,
+                   std::string matrix_file, decltype(Reproduction::run) run) {
+  return Reproduction{std::move(name),     std::move(title),       std::move(paper), std::move(produces),
+                      std::move(runs),     std::move(matrix_file), std::move(run)};
+}
+
 std::vector<Reproduction> make_registry() {
   std::vector<Reproduction> list;
-  {
-    Reproduction r;
-    r.name = "rgbd-vio-table1";
-    r.title = "RGBD-VIO Table I: trajectory RMSE of RGBD-VIO vs VINS-Fusion (RGB-D) vs VINS-RGBD";
-    r.paper = "w-roma-rgbd-vio-object-manipulation.txt, §VI-A, Table I and Fig. 5";
-    r.produces = "table1.md, table1.csv (mean ATE RMSE with 95 % CIs, paper beside ours, relative changes), "
-                 "verdict.md, trajectories.png (top view, lab-walk-3 seed 1), results.csv";
-    r.runs = "rgbd-vio-table1.yaml: lab-walk-1..5 (hand mount, feature level) x 3 variants x 5 seeds through "
-             "navaid simulate + navaid run; --quick: lab-walk-1 and -3, first 15 s, 2 seeds";
-    r.matrix_file = "rgbd-vio-table1.yaml";
-    r.run = [](const std::filesystem::path& matrix, const ReproductionRequest& request,
-               const ReproductionEnvironment& env) { run_table_reproduction(rgbd_vio_table1_spec(), matrix, request, env); };
-    list.push_back(std::move(r));
-  }
-  {
-    Reproduction r;
-    r.name = "smart-cane-table1";
-    r.title = "Smart Cane Table I: search time, nodes expanded and path length of A* vs the walking-path generator";
-    r.paper = "smart-cane-biped-walking-path-generation.txt, §V-B, Table I and Fig. 10";
-    r.produces = "table1.md, table1.csv (avg / std / max per map and planner, the paper's beside ours, relative "
-                 "changes with 95 % CIs), verdict.md, runs.csv (every pair), paths-<map>.png (first pair, Fig. 10)";
-    r.runs = "smart-cane-table1.yaml: office1, office2, pillar, school x 2 planners x 30 start/goal pairs (seed 1), in "
-             "process; --quick: office1 and pillar, 5 pairs; --seeds N: N pairs";
-    r.matrix_file = "smart-cane-table1.yaml";
-    r.run = [](const std::filesystem::path& matrix, const ReproductionRequest& request,
-               const ReproductionEnvironment& env) { run_planner_table(smart_cane_table1_entry(), matrix, request, env); };
-    list.push_back(std::move(r));
-  }
+  list.push_back(entry(
+      "rgbd-vio-table1", "RGBD-VIO Table I: trajectory RMSE of RGBD-VIO vs VINS-Fusion (RGB-D) vs VINS-RGBD",
+      "w-roma-rgbd-vio-object-manipulation.txt, §VI-A, Table I and Fig. 5",
+      "table1.md, table1.csv (mean ATE RMSE with 95 % CIs, paper beside ours, relative changes), "
+      "verdict.md, trajectories.png (top view, lab-walk-3 seed 1), results.csv",
+      "rgbd-vio-table1.yaml: lab-walk-1..5 (hand mount, feature level) x 3 variants x 5 seeds through "
+      "navaid simulate + navaid run; --quick: lab-walk-1 and -3, first 15 s, 2 seeds",
+      "rgbd-vio-table1.yaml",
+      [](const std::filesystem::path& matrix, const ReproductionRequest& request, const ReproductionEnvironment& env) {
+        run_table_reproduction(rgbd_vio_table1_spec(), matrix, request, env);
+      }));
+  list.push_back(entry(
+      "smart-cane-table1",
+      "Smart Cane Table I: search time, nodes expanded and path length of A* vs the walking-path generator",
+      "smart-cane-biped-walking-path-generation.txt, §V-B, Table I and Fig. 10",
+      "table1.md, table1.csv (avg / std / max per map and planner, the paper's beside ours, relative "
+      "changes with 95 % CIs), verdict.md, runs.csv (every pair), paths-<map>.png (first pair, Fig. 10)",
+      "smart-cane-table1.yaml: office1, office2, pillar, school x 2 planners x 30 start/goal pairs (seed 1), in "
+      "process; --quick: office1 and pillar, 5 pairs; --seeds N: N pairs",
+      "smart-cane-table1.yaml",
+      [](const std::filesystem::path& matrix, const ReproductionRequest& request, const ReproductionEnvironment& env) {
+        run_planner_table(smart_cane_table1_entry(), matrix, request, env);
+      }));
   return list;
 }
 

@@ -8,6 +8,7 @@
 #include "navaid/planning/angles.hpp"
 #include "navaid/planning/direction_astar.hpp"
 #include "navaid/planning/path_guidance.hpp"
+#include "planar_estimate.hpp"
 
 namespace navaid::planning {
 namespace {
@@ -15,17 +16,6 @@ namespace {
 using mapping::Cell2;
 using mapping::CostMap;
 using mapping::GridGeometry;
-
-StateEstimate estimate_at(Vec2 p, double yaw, double sigma_xy, double sigma_yaw, Timestamp t = 0) {
-  StateEstimate e;
-  e.t = t;
-  e.mode = EstimatorMode::kRgbdVio;
-  e.T_W_B = SE3(Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())), Vec3(p.x(), p.y(), 1.5));
-  e.covariance = Mat15::Identity() * 1e-6;
-  e.covariance.block<3, 3>(0, 0) = Mat3::Identity() * sigma_yaw * sigma_yaw;
-  e.covariance.block<3, 3>(3, 3) = Mat3::Identity() * sigma_xy * sigma_xy;
-  return e;
-}
 
 CostMap open_map() { return CostMap(GridGeometry(Cell2(-50, -50), 100, 100, 0.1), 0.9, 0.0); }
 
@@ -40,14 +30,14 @@ TEST(PathGuidance, HeadingIsRelativeToTheUser) {
   Subgoal goal;
   goal.goal_W = Vec2(4.0, 0.05);
   // Facing north (+y), the goal lies east: turn right by 90 degrees.
-  const GuidanceCommand c = g.update(estimate_at({0.05, 0.05}, kPi / 2, 0.01, 0.001), m, nullptr, goal);
+  const GuidanceCommand c = g.update(planar_estimate({0.05, 0.05}, kPi / 2, 0.01, 0.001), m, nullptr, goal);
   ASSERT_EQ(c.action, GuidanceAction::kGo) << c.detail;
   EXPECT_NEAR(*c.heading_rad, -kPi / 2, 1e-9);
   EXPECT_NEAR(*c.lookahead_m, 2.0, 1e-9);
   EXPECT_GT(c.confidence, 0.9);
   EXPECT_EQ(g.stats().plans, 1U);
   // Within the arrival radius.
-  EXPECT_EQ(g.update(estimate_at({3.8, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal).action, GuidanceAction::kArrived);
+  EXPECT_EQ(g.update(planar_estimate({3.8, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal).action, GuidanceAction::kArrived);
 }
 
 TEST(PathGuidance, LocatingWithholdsTheDirection) {
@@ -55,7 +45,7 @@ TEST(PathGuidance, LocatingWithholdsTheDirection) {
   PathGuidance g = guidance();
   Subgoal goal;
   goal.direction_rad = 0.0;
-  StateEstimate e = estimate_at({0.0, 0.0}, 0.0, 0.01, 0.001);
+  StateEstimate e = planar_estimate({0.0, 0.0}, 0.0, 0.01, 0.001);
   e.mode = EstimatorMode::kInitializing;
   GuidanceCommand c = g.update(e, m, nullptr, goal);
   EXPECT_EQ(c.action, GuidanceAction::kWait);
@@ -63,10 +53,10 @@ TEST(PathGuidance, LocatingWithholdsTheDirection) {
   EXPECT_FALSE(c.heading_rad.has_value());
   // Heading sigma just under and just over the 15 degree limit.
   PathGuidance direction = guidance("direction-astar");
-  c = direction.update(estimate_at({0.0, 0.0}, 0.0, 0.01, deg_to_rad(14.0)), m, nullptr, goal);
+  c = direction.update(planar_estimate({0.0, 0.0}, 0.0, 0.01, deg_to_rad(14.0)), m, nullptr, goal);
   EXPECT_EQ(c.action, GuidanceAction::kGo);
   EXPECT_LT(c.confidence, 0.1);  // sure of the way, barely sure of the heading
-  c = direction.update(estimate_at({0.0, 0.0}, 0.0, 0.01, deg_to_rad(16.0)), m, nullptr, goal);
+  c = direction.update(planar_estimate({0.0, 0.0}, 0.0, 0.01, deg_to_rad(16.0)), m, nullptr, goal);
   EXPECT_EQ(c.action, GuidanceAction::kWait);
   EXPECT_EQ(c.reason, GuidanceReason::kLocating);
   EXPECT_FALSE(c.heading_rad.has_value());
@@ -80,7 +70,7 @@ TEST(PathGuidance, RouteSubgoalsWaitForTheRegistration) {
   Subgoal route;
   route.direction_rad = 0.3;
   route.from_route = true;
-  StateEstimate e = estimate_at({0.0, 0.0}, 0.0, 0.01, 0.001);
+  StateEstimate e = planar_estimate({0.0, 0.0}, 0.0, 0.01, 0.001);
   EXPECT_EQ(g.update(e, m, nullptr, route).reason, GuidanceReason::kRegistrationUncertain);
   e.T_ENU_W = SE3();
   e.T_ENU_W_covariance = Mat4::Identity() * 0.01;
@@ -102,7 +92,7 @@ TEST(PathGuidance, PositionSigmaLowersConfidenceAndWidensTheBerth) {
   goal.goal_W = Vec2(4.0, 0.05);
   const auto run = [&](double sigma) {
     PathGuidance g(gc, make_local_planner("astar", config));
-    const GuidanceCommand c = g.update(estimate_at({0.05, 0.05}, 0.0, sigma, 0.001), m, nullptr, goal);
+    const GuidanceCommand c = g.update(planar_estimate({0.05, 0.05}, 0.0, sigma, 0.001), m, nullptr, goal);
     double closest = 1e9;
     for (const Vec2& q : g.plan()->path_W) closest = std::min(closest, std::abs(q.x() - 2.05) + (std::abs(q.y()) < 1.0 ? 0.0 : std::abs(std::abs(q.y()) - 1.0)));
     return std::make_pair(c, closest);
@@ -122,15 +112,15 @@ TEST(PathGuidance, ReplansWhenTheMapBlocksThePathOrTheSubgoalTurns) {
   PathGuidance g = guidance("direction-astar", config);
   Subgoal goal;
   goal.direction_rad = 0.0;
-  g.update(estimate_at({0.0, 0.0}, 0.0, 0.01, 0.001, 0), m, nullptr, goal);
-  g.update(estimate_at({0.1, 0.0}, 0.0, 0.01, 0.001, 100'000'000), m, nullptr, goal);
+  g.update(planar_estimate({0.0, 0.0}, 0.0, 0.01, 0.001, 0), m, nullptr, goal);
+  g.update(planar_estimate({0.1, 0.0}, 0.0, 0.01, 0.001, 100'000'000), m, nullptr, goal);
   EXPECT_EQ(g.stats().plans, 1U);  // nothing changed
   for (int y = 30; y < 70; ++y) m.at(75, y) = 1.0F;  // a new obstacle across the old path
-  const GuidanceCommand around = g.update(estimate_at({0.2, 0.0}, 0.0, 0.01, 0.001, 200'000'000), m, nullptr, goal);
+  const GuidanceCommand around = g.update(planar_estimate({0.2, 0.0}, 0.0, 0.01, 0.001, 200'000'000), m, nullptr, goal);
   EXPECT_EQ(g.stats().plans, 2U);
   EXPECT_EQ(around.action, GuidanceAction::kGo);
   goal.direction_rad = kPi / 2;  // the subgoal turns north
-  const GuidanceCommand north = g.update(estimate_at({0.2, 0.0}, 0.0, 0.01, 0.001, 300'000'000), m, nullptr, goal);
+  const GuidanceCommand north = g.update(planar_estimate({0.2, 0.0}, 0.0, 0.01, 0.001, 300'000'000), m, nullptr, goal);
   EXPECT_EQ(g.stats().plans, 3U);
   EXPECT_GT(*north.heading_rad, kPi / 4);
 }
@@ -142,7 +132,7 @@ TEST(PathGuidance, TurnsBackWhenTheSubgoalSideIsWalledOffAndStopsWhenEnclosed) {
   PathGuidance g = guidance("direction-astar");
   Subgoal goal;
   goal.direction_rad = 0.0;
-  const GuidanceCommand c = g.update(estimate_at({0.05, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal);
+  const GuidanceCommand c = g.update(planar_estimate({0.05, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal);
   // The only way is back west; Direction A* still finds it (the term penalises, not forbids).
   ASSERT_EQ(c.action, GuidanceAction::kGo);
   EXPECT_GT(std::abs(*c.heading_rad), kPi / 2);
@@ -150,7 +140,7 @@ TEST(PathGuidance, TurnsBackWhenTheSubgoalSideIsWalledOffAndStopsWhenEnclosed) {
   for (int i = 40; i < 52; ++i) m.at(i, 45) = m.at(i, 55) = 1.0F;
   for (int y = 45; y < 56; ++y) m.at(40, y) = 1.0F;
   PathGuidance enclosed = guidance("direction-astar");
-  const GuidanceCommand stop = enclosed.update(estimate_at({0.05, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal);
+  const GuidanceCommand stop = enclosed.update(planar_estimate({0.05, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal);
   EXPECT_EQ(stop.action, GuidanceAction::kStop);
   EXPECT_EQ(stop.reason, GuidanceReason::kNoPath);
   EXPECT_FALSE(stop.heading_rad.has_value());

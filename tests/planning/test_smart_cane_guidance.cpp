@@ -7,6 +7,7 @@
 
 #include "navaid/planning/angles.hpp"
 #include "navaid/planning/smart_cane_guidance.hpp"
+#include "planar_estimate.hpp"
 
 namespace navaid::planning {
 namespace {
@@ -14,17 +15,6 @@ namespace {
 using mapping::Cell2;
 using mapping::CostMap;
 using mapping::GridGeometry;
-
-StateEstimate estimate_at(Vec2 p, double yaw, double sigma_yaw, Timestamp t) {
-  StateEstimate e;
-  e.t = t;
-  e.mode = EstimatorMode::kRgbdVio;
-  e.T_W_B = SE3(Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())), Vec3(p.x(), p.y(), 1.5));
-  e.covariance = Mat15::Identity() * 1e-6;
-  e.covariance.block<3, 3>(0, 0) = Mat3::Identity() * sigma_yaw * sigma_yaw;
-  e.covariance.block<3, 3>(3, 3) = Mat3::Identity() * 1e-4;
-  return e;
-}
 
 // 16 x 8 m room, a 1 x 3 m block in the middle of the straight line from start to goal.
 CostMap hall() {
@@ -36,13 +26,25 @@ CostMap hall() {
   return m;
 }
 
-TEST(SmartCaneGuidance, TheUserIsSteeredRoundTheBlockToTheGoal) {
-  const CostMap m = hall();
+// The hall, its ESDF and a cane with the default loop (uncertainty gated on absolute sigmas).
+struct HallCane {
+  CostMap m = hall();
   mapping::Esdf2d esdf;
-  esdf.update(m);
   SmartCaneGuidanceConfig config = SmartCaneGuidance::default_config();
-  config.guidance.scope = mapping::UncertaintyScope::kAbsolute;
-  SmartCaneGuidance cane(config);
+  std::unique_ptr<SmartCaneGuidance> cane;
+  HallCane() {
+    esdf.update(m);
+    config.guidance.scope = mapping::UncertaintyScope::kAbsolute;
+    cane = std::make_unique<SmartCaneGuidance>(config);
+  }
+};
+
+TEST(SmartCaneGuidance, TheUserIsSteeredRoundTheBlockToTheGoal) {
+  HallCane h;
+  const CostMap& m = h.m;
+  const mapping::Esdf2d& esdf = h.esdf;
+  const SmartCaneGuidanceConfig& config = h.config;
+  SmartCaneGuidance& cane = *h.cane;
   Subgoal goal;
   goal.goal_W = Vec2(14.0, 4.0);
   Vec2 p(2.0, 4.0);
@@ -53,7 +55,7 @@ TEST(SmartCaneGuidance, TheUserIsSteeredRoundTheBlockToTheGoal) {
   double max_steer = 0.0;
   int steps = 0;
   for (; steps < 400 && !arrived; ++steps) {
-    const GuidanceCommand c = cane.update(estimate_at(p, yaw, 0.01, seconds_to_ns(dt * steps)), m, esdf, goal);
+    const GuidanceCommand c = cane.update(planar_estimate(p, yaw, 0.01, 0.01, seconds_to_ns(dt * steps)), m, esdf, goal);
     if (c.action == GuidanceAction::kArrived) {
       arrived = true;
       break;
@@ -75,18 +77,16 @@ TEST(SmartCaneGuidance, TheUserIsSteeredRoundTheBlockToTheGoal) {
 }
 
 TEST(SmartCaneGuidance, NoPullWhileLocating) {
-  const CostMap m = hall();
-  mapping::Esdf2d esdf;
-  esdf.update(m);
-  SmartCaneGuidanceConfig config = SmartCaneGuidance::default_config();
-  config.guidance.scope = mapping::UncertaintyScope::kAbsolute;
-  SmartCaneGuidance cane(config);
+  HallCane h;
+  const CostMap& m = h.m;
+  const mapping::Esdf2d& esdf = h.esdf;
+  SmartCaneGuidance& cane = *h.cane;
   Subgoal goal;
   goal.goal_W = Vec2(14.0, 6.5);
-  const GuidanceCommand go = cane.update(estimate_at({2.0, 4.0}, 0.0, 0.01, 0), m, esdf, goal);
+  const GuidanceCommand go = cane.update(planar_estimate({2.0, 4.0}, 0.0, 0.01, 0.01, 0), m, esdf, goal);
   ASSERT_EQ(go.action, GuidanceAction::kGo);
   EXPECT_NE(*go.steering_rad, 0.0);
-  const GuidanceCommand lost = cane.update(estimate_at({2.0, 4.0}, 0.0, deg_to_rad(30.0), seconds_to_ns(0.1)), m, esdf, goal);
+  const GuidanceCommand lost = cane.update(planar_estimate({2.0, 4.0}, 0.0, 0.01, deg_to_rad(30.0), seconds_to_ns(0.1)), m, esdf, goal);
   EXPECT_EQ(lost.action, GuidanceAction::kWait);
   EXPECT_EQ(lost.reason, GuidanceReason::kLocating);
   EXPECT_FALSE(lost.heading_rad.has_value());
