@@ -119,8 +119,11 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
     if (!obstacle_csv_) throw IoError((out_ / "obstacle_scan.csv").string(), "cannot write");
     const auto& o = *options.obstacles;
     obstacle_csv_ << "t_ns,ground,ransac,obstacle_points,drop_off_points";
-    for (std::size_t b = 0; b < o.scan_bins(); ++b)
-      obstacle_csv_ << fmt::format(",r_{:.0f}", (o.scan_min_bearing_rad + static_cast<double>(b) * o.scan_bin_width_rad) * 180.0 / M_PI);
+    // Nearest obstacle (r_) and nearest drop-off (d_) per bearing bin.
+    for (const char* kind : {"r", "d"})
+      for (std::size_t b = 0; b < o.scan_bins(); ++b)
+        obstacle_csv_ << fmt::format(",{}_{:.0f}", kind,
+                                     (o.scan_min_bearing_rad + static_cast<double>(b) * o.scan_bin_width_rad) * 180.0 / M_PI);
     obstacle_csv_ << "\n";
   }
   timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,gated_sigma_xy_m,gated_sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms,"
@@ -190,7 +193,8 @@ void MapSession::scan_obstacles(const RgbdFrame& frame, const StateEstimate& est
   obstacle_csv_ << fmt::format("{},{},{},{},{}", frame.t, static_cast<int>(scan.counters.ground_source),
                                scan.counters.ransac_succeeded ? 1 : 0, scan.counters.obstacle_points,
                                scan.counters.drop_off_points);
-  for (const float r : scan.ranges) obstacle_csv_ << "," << (std::isfinite(r) ? fmt::format("{:.3f}", r) : std::string());
+  for (const auto* ranges : {&scan.ranges, &scan.drop_off_ranges})
+    for (const float r : *ranges) obstacle_csv_ << "," << (std::isfinite(r) ? fmt::format("{:.3f}", r) : std::string());
   obstacle_csv_ << "\n";
 }
 

@@ -53,7 +53,7 @@ std::vector<mapping::ObstacleScan> parse_obstacle_scan_csv(std::istream& in, con
   if (!line.empty() && line.back() == '\r') line.pop_back();
   std::vector<std::string> header;  // owned: `line` is reused for the rows
   for (const std::string_view h : split(line)) header.emplace_back(h);
-  const std::string expected = "t_ns,ground,ransac,obstacle_points,drop_off_points,r_<deg>,...";
+  const std::string expected = "t_ns,ground,ransac,obstacle_points,drop_off_points,r_<deg>,...[,d_<deg>,...]";
   if (header.size() <= kFixed) {
     throw IoError(name, line_no, fmt::format("not an obstacle_scan.csv header (expected {}; got {} columns)", expected,
                                              header.size()));
@@ -64,8 +64,11 @@ std::vector<mapping::ObstacleScan> parse_obstacle_scan_csv(std::istream& in, con
                                                kFixedColumns[i], expected));
     }
   }
+  // r_<deg> per bin, then (files since drop-offs are written) as many d_<deg> with the same labels.
+  std::size_t r_end = kFixed;
+  while (r_end < header.size() && header[r_end].rfind("d_", 0) != 0) ++r_end;
   std::vector<double> label_deg;
-  for (std::size_t i = kFixed; i < header.size(); ++i) {
+  for (std::size_t i = kFixed; i < r_end; ++i) {
     const std::string_view h = header[i];
     const std::optional<double> deg = h.substr(0, 2) == "r_" ? parse_whole<double>(h.substr(2)) : std::nullopt;
     if (!deg || !std::isfinite(*deg)) {
@@ -73,7 +76,25 @@ std::vector<mapping::ObstacleScan> parse_obstacle_scan_csv(std::istream& in, con
     }
     label_deg.push_back(*deg);
   }
+  if (label_deg.empty()) {
+    throw IoError(name, line_no, fmt::format("no r_<deg> bin columns before the drop-off columns (header {})", expected));
+  }
   const std::size_t bins = label_deg.size();
+  const bool has_drop_offs = r_end < header.size();
+  if (has_drop_offs) {
+    if (header.size() - r_end != bins) {
+      throw IoError(name, line_no, fmt::format("{} drop-off columns d_<deg> for {} range columns r_<deg>",
+                                               header.size() - r_end, bins));
+    }
+    for (std::size_t b = 0; b < bins; ++b) {
+      const std::string_view h = header[r_end + b];
+      const std::optional<double> deg = parse_whole<double>(h.substr(2));
+      if (!deg || std::abs(*deg - label_deg[b]) > 1e-9) {
+        throw IoError(name, line_no, fmt::format("column {} is {}, expected 'd_{}' (the drop-off of bin {})",
+                                                 r_end + b + 1, shown(h), header[kFixed + b].substr(2), b));
+      }
+    }
+  }
   const double first = label_deg.front();
   const double increment_deg = bins > 1 ? (label_deg.back() - first) / static_cast<double>(bins - 1) : 1.0;
   if (!(increment_deg > 0.0)) {
@@ -128,6 +149,13 @@ std::vector<mapping::ObstacleScan> parse_obstacle_scan_csv(std::istream& in, con
       const auto r = parse_whole<float>(field);
       if (!r || !std::isfinite(*r) || *r < 0.0f) throw bad(kFixed + b, "a range >= 0 m or empty");
       scan.ranges[b] = *r;
+    }
+    for (std::size_t b = 0; has_drop_offs && b < bins; ++b) {
+      const std::string_view field = f[r_end + b];
+      if (field.empty()) continue;  // no drop-off in this bin
+      const auto r = parse_whole<float>(field);
+      if (!r || !std::isfinite(*r) || *r < 0.0f) throw bad(r_end + b, "a drop-off range >= 0 m or empty");
+      scan.drop_off_ranges[b] = *r;
     }
     scans.push_back(std::move(scan));
   }

@@ -75,6 +75,7 @@ Scenario make_scenario(std::string_view name, const ScenarioOptions& options) {
   s.name = e.name;
   s.description = e.description;
   s.seed = options.seed == 0 ? e.seed : options.seed;
+  s.place_targets = options.targets;
   Rng rng(s.seed);
   e.build(s, rng);
   // Moving objects are always generated (so the static world does not depend on the switches),

@@ -181,6 +181,7 @@ ScenarioOptions read_scenario_options(const Config& c) {
   o.seed = static_cast<std::uint64_t>(c.get_int("simulation.world_seed", 0, 0, std::numeric_limits<long long>::max()));
   o.people = c.get_bool("simulation.people", o.people);
   o.vehicles = c.get_bool("simulation.vehicles", o.vehicles);
+  o.targets = c.get_bool("simulation.targets", o.targets);
   return o;
 }
 

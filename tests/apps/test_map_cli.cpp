@@ -86,7 +86,7 @@ TEST_F(MapCli, TheObstaclePipelineWritesAScanPerFrame) {
   std::istringstream csv(read_text(out / "obstacle_scan.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4 + 61);  // five counters, bins -30 .. 30 deg
+  EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4 + 2 * 61);  // five counters, r_ and d_ bins -30 .. 30 deg
   std::size_t rows = 0, ransac = 0, with_obstacles = 0;
   while (std::getline(csv, line)) {
     ++rows;

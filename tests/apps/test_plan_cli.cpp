@@ -45,7 +45,7 @@ TEST(PlanCli, AStarAndDirectionAStarOnTheRealWillowOfficeMap) {
   EXPECT_LE(d["length_m"].get<double>(), 20.0);  // inside the 10 m window
 }
 
-TEST(PlanCli, AStarAlongTheRealGeb079Corridor) {
+TEST(PlanCli, AStarAndDirectionAStarAlongTheRealGeb079Corridor) {
   NAVAID_REQUIRE_SHARED_DATA();
   const ScratchDir dir("plan_cli_geb079");
   const std::string map = (navaid::testing::shared_data_dir() / "octomap-geb079/geb079.bt").string();
@@ -56,6 +56,14 @@ TEST(PlanCli, AStarAlongTheRealGeb079Corridor) {
   EXPECT_EQ(j["status"], "found");
   EXPECT_NEAR(j["length_m"].get<double>(), 8.0, 0.5);  // straight down the corridor
   EXPECT_NE(j["map"].get<std::string>().find("OctoMap"), std::string::npos);
+  // Direction A* down the same corridor (+x): a path inside the 10 m window heading east.
+  const fs::path direction_out = dir / "direction";
+  const auto direction = navaid_cli("plan --map '" + map + "' --planner direction-astar --start 1,-0.1,0 --direction 0 " +
+                                    "--set mapping.collision.min_relative_height_m=-1.32 --out '" + direction_out.string() + "'");
+  ASSERT_EQ(direction.status, 0) << direction.output;
+  const nlohmann::json d = plan_json(direction_out);
+  EXPECT_EQ(d["status"], "found");
+  EXPECT_GT(d["path"].back()[0].get<double>(), 4.0);
 }
 
 TEST(PlanCli, WalkingPathGeneratorOnTheRealWillowMapAndTheGeb079Corridor) {

@@ -159,7 +159,7 @@ TEST_F(RumbleCli, Errors) {
   const auto bad_range = navaid_cli("rumble" + scans + " --function cacf --set planning.byu.cacf.width_m=0" + out);
   EXPECT_EQ(bad_range.status, 2);
   EXPECT_NE(bad_range.output.find("planning.byu.cacf.width_m"), std::string::npos) << bad_range.output;
-  // A corrupt copy of the real file: a non-numeric range on its third line.
+  // A corrupt copy of the real file: a non-numeric drop-off range on its third line.
   std::istringstream in(read_text(path("map") / "obstacle_scan.csv"));
   std::string header, row1, row2;
   std::getline(in, header);
@@ -170,7 +170,7 @@ TEST_F(RumbleCli, Errors) {
   const auto corrupt = navaid_cli("rumble --scans '" + path("corrupt.csv").string() + "' --function ficf" + out);
   EXPECT_EQ(corrupt.status, 2);
   EXPECT_NE(corrupt.output.find(path("corrupt.csv").string() + ":3:"), std::string::npos) << corrupt.output;
-  EXPECT_NE(corrupt.output.find("r_30"), std::string::npos) << corrupt.output;
+  EXPECT_NE(corrupt.output.find("d_30"), std::string::npos) << corrupt.output;  // the last column: the drop-off at 30 deg
   const auto missing = navaid_cli("rumble --scans /nonexistent/obstacle_scan.csv --function ficf" + out);
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.output.find("/nonexistent/obstacle_scan.csv"), std::string::npos) << missing.output;

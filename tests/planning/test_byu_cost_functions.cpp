@@ -463,6 +463,30 @@ TEST(ObstacleScanCsv, ReadsWhatNavaidMapWrites) {
   EXPECT_EQ(parse(crlf).size(), 1u);
 }
 
+TEST(ObstacleScanCsv, DropOffColumnsFillTheDropOffBins) {
+  // Files since the drop-offs are written: d_<deg> per bin after the r_<deg> columns.
+  std::string h = "t_ns,ground,ransac,obstacle_points,drop_off_points";
+  for (const char* kind : {"r", "d"})
+    for (int b = -2; b <= 2; ++b) h += std::string(",") + kind + "_" + std::to_string(b);
+  const std::vector<ObstacleScan> scans = parse(h + "\n7,0,1,4,2,,,2.000,,,,0.900,,,\n");
+  ASSERT_EQ(scans.size(), 1u);
+  ASSERT_EQ(scans[0].size(), 5u);
+  EXPECT_FLOAT_EQ(scans[0].ranges[2], 2.0f);
+  EXPECT_TRUE(scans[0].has_drop_off(1));
+  EXPECT_FLOAT_EQ(scans[0].drop_off_ranges[1], 0.9f);
+  EXPECT_FALSE(scans[0].has_drop_off(2));
+  // The drop-off makes the nearer bin: FICF / CACF see 0.9 m at -1 deg (DropOffsCountAsObstacles).
+  const auto message = [](const std::string& text) {
+    return error_message<IoError>([&] { parse(text); }, text.substr(0, 60));
+  };
+  std::string m = message("t_ns,ground,ransac,obstacle_points,drop_off_points,r_0,r_1,d_0\n");
+  EXPECT_NE(m.find("1 drop-off columns d_<deg> for 2 range columns"), std::string::npos) << m;
+  m = message("t_ns,ground,ransac,obstacle_points,drop_off_points,r_0,r_1,d_0,d_2\n");
+  EXPECT_NE(m.find("expected 'd_1'"), std::string::npos) << m;
+  m = message(h + "\n7,0,1,4,2,,,,,,,x,,,\n");
+  EXPECT_NE(m.find("d_-1"), std::string::npos) << m;
+}
+
 TEST(ObstacleScanCsv, CorruptFilesNameFileAndLine) {
   const auto message = [](const std::string& text) {
     return error_message<IoError>([&] { parse(text); }, text.substr(0, 60));

@@ -96,8 +96,9 @@ void build_lab_walk(Scenario& s, Rng& rng, int index) {
   // id 5 (30 cm black square, on a 45 cm white card) on the face turned towards the start of the
   // walks, in view from the start until about x = 5.5 on the way east along y = 2.2. Added last
   // and without random numbers: the rest of the lab is unchanged by it.
-  s.targets.push_back(b.tagged_box("box-on-desk", Vec2(8.0, 0.45), 0.74, Vec3(0.2, 0.23, 0.23),
-                                   std::atan2(1.75, -4.5), "36h11", 5, 0.30, 1));
+  if (s.place_targets)
+    s.targets.push_back(b.tagged_box("box-on-desk", Vec2(8.0, 0.45), 0.74, Vec3(0.2, 0.23, 0.23),
+                                     std::atan2(1.75, -4.5), "36h11", 5, 0.30, 1));
 }
 
 }  // namespace navaid::simulation::scenarios

@@ -79,12 +79,17 @@ struct Scenario {
   std::vector<std::uint32_t> placed_obstacles;
   /// Tagged target objects for hand guidance (the lab walks have one).
   std::vector<TargetObject> targets;
+  /// Read by the builders: whether to place the target objects (ScenarioOptions::targets).
+  bool place_targets = true;
 };
 
 struct ScenarioOptions {
   std::uint64_t seed = 0;   ///< 0 = the scenario's documented default seed
   bool people = true;       ///< moving people
   bool vehicles = true;     ///< moving vehicles
+  /// Target objects for hand guidance (the lab walks' tagged box). Off gives the world as it was
+  /// before the box (studies that must keep their data, e.g. the estimator tests' lab walks).
+  bool targets = true;
 };
 
 /// All scenario names, in documentation order.
