@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "scenarios/families.hpp"
+#include "scenarios/street_layouts.hpp"
 
 namespace navaid::simulation::scenarios {
 
@@ -202,6 +203,45 @@ void build_route2(Scenario& s, Rng& rng) {
   car({Vec2(junctions[1] + 4.0, -4.5), Vec2(junctions[1] + 4.0, 50.0)}, 5.0, 6.0);
   car({Vec2(-25.0, -4.5), Vec2(325.0, -4.5)}, 9.0, 0.0);
   car({Vec2(325.0, -8.0), Vec2(-25.0, -8.0)}, 9.0, 3.0);
+}
+
+// Street layouts (centre lines of the slabs and road patches built above; the test
+// OsmExport.LayoutsLieOnTheWorldsSurfaces checks them against the worlds).
+StreetMap route1_streets() {
+  StreetMap m;
+  m.sidewalks = {{Vec2(0.0, 36.0), Vec2(0.0, 0.0)},        // walkway south from the gate, x in [-1.5, 1.5]
+                 {Vec2(0.0, 0.0), Vec2(250.0, 0.0)},       // north sidewalk of the main street, y in [-1.5, 1.5]
+                 {Vec2(-30.0, -12.0), Vec2(270.0, -12.0)}};  // south sidewalk, y in [-14.5, -9.5] (no crossing to it)
+  StreetRoad main{{Vec2(-30.0, -5.5), Vec2(270.0, -5.5)}, "Route 1 Main Street", "residential",
+                  {{"sidewalk", "separate"}, {"foot", "use_sidepath"}}};
+  // Drawn south to north: the gate walkway runs along its right (east) side.
+  StreetRoad side{{Vec2(-5.5, -5.5), Vec2(-5.5, 60.0)}, "Route 1 Side Street", "residential",
+                  {{"sidewalk:right", "separate"}, {"sidewalk:left", "no"}}};
+  m.roads = {main, side};
+  m.landmarks = {{Vec2(240.0, 3.6), "Honoring the Pioneers of Science",
+                  {{"amenity", "notice_board"}, {"tourism", "information"}, {"information", "board"}}}};
+  m.goal_landmark = 0;
+  return m;
+}
+
+StreetMap route2_streets() {
+  StreetMap m;
+  m.sidewalks = {{Vec2(-10.0, 0.0), Vec2(88.0, 0.0)},
+                 {Vec2(96.0, 0.0), Vec2(188.0, 0.0)},
+                 {Vec2(196.0, 0.0), Vec2(320.0, 0.0)},          // north sidewalk, y in [-2, 2], cut by the junctions
+                 {Vec2(-30.0, -12.5), Vec2(330.0, -12.5)}};      // south sidewalk, y in [-15, -10] (no crossing to it)
+  for (double j : {88.0, 188.0})  // zebra crossings over the side streets, no signals, no tactile paving
+    m.crossings.push_back({Vec2(j, 0.0), Vec2(j + 8.0, 0.0), CrossingControl::kUncontrolled, false, "zebra"});
+  m.roads = {{{Vec2(-30.0, -6.0), Vec2(330.0, -6.0)}, "Route 2 Main Road", "residential",
+              {{"sidewalk", "separate"}, {"foot", "use_sidepath"}}},
+             {{Vec2(92.0, -6.0), Vec2(92.0, 60.0)}, "Route 2 First Side Street", "residential", {{"sidewalk", "no"}}},
+             {{Vec2(192.0, -6.0), Vec2(192.0, 60.0)}, "Route 2 Second Side Street", "residential", {{"sidewalk", "no"}}}};
+  m.landmarks = {{Vec2(0.0, 6.5), "Cultural Activities Center", {{"amenity", "community_centre"}}},
+                 {Vec2(241.0, -1.25), "", {{"highway", "bus_stop"}, {"amenity", "shelter"}, {"shelter_type", "public_transport"}}},
+                 {Vec2(300.0, 4.2), "Kexing Unit",
+                  {{"amenity", "notice_board"}, {"tourism", "information"}, {"information", "board"}}}};
+  m.goal_landmark = 2;
+  return m;
 }
 
 }  // namespace navaid::simulation::scenarios
