@@ -1,5 +1,6 @@
 // navaid scenario-map: a scenario's ground-truth maps for planners and figures: voxel list, 2D
-// occupancy (ROS map_server PGM + YAML) of the body's height band, and the top view.
+// occupancy (ROS map_server PGM + YAML) of the body's height band, and the top view; with --osm the
+// street scenarios' walkways, crossings and landmarks as OpenStreetMap XML plus the route's truth.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -8,6 +9,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/simulation/occupancy_export.hpp"
+#include "navaid/simulation/osm_export.hpp"
 #include "navaid/simulation/scenario.hpp"
 #include "navaid/simulation/top_view.hpp"
 
@@ -22,13 +24,37 @@ struct ScenarioMapArgs {
   long long seed = 0;
   std::vector<double> band = {0.2, 2.0};
   bool people = false;
+  bool osm = false;
 };
+
+void run_osm(const simulation::Scenario& s, const std::filesystem::path& out) {
+  const simulation::OsmExport e = simulation::export_osm(s);
+  simulation::write_osm_export(e, out);
+  std::size_t footways = 0;
+  for (const auto& w : e.ways)
+    for (const auto& [k, v] : w.tags)
+      if (k == "highway" && v == "footway") ++footways;
+  const auto& t = e.truth;
+  std::cout << fmt::format(
+      "{} (seed {}): {} nodes, {} ways ({} footways) around {:.7f}, {:.7f}\n"
+      "route: {:.1f} m along the walkways (path {:.1f} m), {} crossing(s), to \"{}\"\n"
+      "wrote {}, {}\n",
+      s.name, s.seed, e.nodes.size(), e.ways.size(), footways, s.origin.latitude_deg, s.origin.longitude_deg,
+      t.length_m, simulation::polyline_length(s.path), t.crossings.size(), t.landmark_name,
+      (out / "map.osm").string(), (out / "osm_truth.json").string());
+}
 
 void run(const ScenarioMapArgs& a) {
   simulation::ScenarioOptions options;
   options.seed = static_cast<std::uint64_t>(a.seed);
   options.people = options.vehicles = a.people;
   const simulation::Scenario s = simulation::make_scenario(a.scenario, options);
+  if (a.osm) {
+    if (!simulation::has_streets(s.name))
+      throw UsageError("scenario " + s.name + " has no streets to export (--osm works on route1 and route2)");
+    run_osm(s, a.out);
+    return;
+  }
   if (a.band.size() != 2 || !(a.band[1] > a.band[0]))
     throw UsageError("--band needs two heights above the ground, low < high (e.g. --band 0.2 2.0)");
   std::filesystem::create_directories(a.out);
@@ -53,7 +79,7 @@ void run(const ScenarioMapArgs& a) {
 void add_scenario_map_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scenario-map",
                                  "Export a scenario's ground-truth maps: voxels (CSV), 2D occupancy (ROS map_server "
-                                 "PGM + YAML) and top view (PNG)");
+                                 "PGM + YAML) and top view (PNG); --osm: the streets as OpenStreetMap XML");
   auto a = std::make_shared<ScenarioMapArgs>();
   cmd->add_option("--scenario", a->scenario, "Scenario name (navaid simulate --list)")->required();
   cmd->add_option("--out", a->out, "Output folder")->required();
@@ -61,6 +87,9 @@ void add_scenario_map_command(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "World seed (default: the scenario's documented seed)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--band", a->band, "Heights above ground [m] of the 2D occupancy slice (default 0.2 2.0)")->expected(2);
   cmd->add_flag("--moving", a->people, "Include people and vehicles at their start positions (default: static world)");
+  cmd->add_flag("--osm", a->osm,
+                "Street scenarios (route1, route2): write only map.osm (OSM XML 0.6 of the walkways, crossings, roads "
+                "and landmarks in the scenario's geodetic frame) and osm_truth.json (the scenario's route)");
   cmd->callback([a] { run(*a); });
 }
 
