@@ -161,6 +161,12 @@ OsmExport export_osm(const Scenario& s) {
       mid.tags.emplace_back("crossing", crossing_kind(c.control));
       if (c.tactile_paving) mid.tags.emplace_back("tactile_paving", *c.tactile_paving ? "yes" : "no");
       if (!c.markings.empty()) mid.tags.emplace_back("crossing:markings", c.markings);
+      if (c.kerb_height_m)
+        for (const Vec2& end : {c.from, c.to}) {
+          OsmNode& n = node(node_at(end));
+          n.tags.emplace_back("kerb", "raised");
+          n.tags.emplace_back("kerb:height", fmt::format("{:.2f}", *c.kerb_height_m));
+        }
     }
     if (l.kind != LineKind::kRoad)
       for (std::size_t k = 0; k + 1 < w.nodes.size(); ++k)

@@ -430,7 +430,14 @@ TEST_P(StreetScenario, LayoutsLieOnTheWorldsSurfaces) {
   };
   for (const auto& r : m.roads) along(r.line, [&](const Vec2& p) { on_road(p, "road"); });
   for (const auto& c : m.crossings) {
-    along({c.from, c.to}, [&](const Vec2& p) { on_road(p, "crossing"); });
+    along({c.from, c.to}, [&](const Vec2& p) {
+      on_road(p, "crossing");
+      if (c.kerb_height_m) {  // the road a kerb's height below the walked surface
+        const auto h = look(p, s.ground_z_m - 0.1);
+        ASSERT_TRUE(h);
+        EXPECT_NEAR(h->point.z(), s.ground_z_m - *c.kerb_height_m, 0.01) << p.transpose();
+      }
+    });
     if (c.markings == "zebra") {  // a stripe beside the centre line
       const auto h = look(0.5 * (c.from + c.to) + Vec2(0.0, 0.5), s.ground_z_m - 0.1);
       ASSERT_TRUE(h);
@@ -462,6 +469,16 @@ TEST(OsmExport, Route2CrossesTwoUncontrolledZebrasWithoutTactilePaving) {
   EXPECT_NEAR(e.truth.crossings[0].at_m, 92.0, 1e-6);
   EXPECT_NEAR(e.truth.crossings[1].at_m, 192.0, 1e-6);
   EXPECT_EQ(e.truth.landmark_name, "Kexing Unit");
+  // The low step at both ends of each crossing, on the nodes the crossing shares with the sidewalks.
+  std::size_t kerbs = 0;
+  for (const OsmNode& n : e.nodes)
+    for (const auto& [k, v] : n.tags)
+      if (k == "kerb:height") {
+        EXPECT_EQ(v, "0.12");
+        EXPECT_NEAR(std::abs(n.xy.y()), 0.0, 1e-9);
+        ++kerbs;
+      }
+  EXPECT_EQ(kerbs, 4u);
   const OsmExport r1 = export_osm(make_scenario("route1"));
   EXPECT_TRUE(r1.truth.crossings.empty());
   EXPECT_EQ(r1.truth.landmark_name, "Honoring the Pioneers of Science");

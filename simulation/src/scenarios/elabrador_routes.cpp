@@ -230,8 +230,10 @@ StreetMap route2_streets() {
                  {Vec2(96.0, 0.0), Vec2(188.0, 0.0)},
                  {Vec2(196.0, 0.0), Vec2(320.0, 0.0)},          // north sidewalk, y in [-2, 2], cut by the junctions
                  {Vec2(-30.0, -12.5), Vec2(330.0, -12.5)}};      // south sidewalk, y in [-15, -10] (no crossing to it)
-  for (double j : {88.0, 188.0})  // zebra crossings over the side streets, no signals, no tactile paving
-    m.crossings.push_back({Vec2(j, 0.0), Vec2(j + 8.0, 0.0), CrossingControl::kUncontrolled, false, "zebra"});
+  // Zebra crossings over the side streets: no signals, no tactile paving, the 0.12 m low step
+  // (road_z in build_route2) at each sidewalk end.
+  for (double j : {88.0, 188.0})
+    m.crossings.push_back({Vec2(j, 0.0), Vec2(j + 8.0, 0.0), CrossingControl::kUncontrolled, false, "zebra", 0.12});
   m.roads = {{{Vec2(-30.0, -6.0), Vec2(330.0, -6.0)}, "Route 2 Main Road", "residential",
               {{"sidewalk", "separate"}, {"foot", "use_sidepath"}}},
              {{Vec2(92.0, -6.0), Vec2(92.0, 60.0)}, "Route 2 First Side Street", "residential", {{"sidewalk", "no"}}},

@@ -37,6 +37,9 @@ struct StreetCrossing {
   CrossingControl control = CrossingControl::kUncontrolled;
   std::optional<bool> tactile_paving;           ///< known: yes / no; unknown: not tagged
   std::string markings;                         ///< crossing:markings value ("zebra"), empty = untagged
+  /// Height of the step between sidewalk and road at both ends (kerb=raised + kerb:height on the
+  /// end nodes); unset = flush or unknown (untagged).
+  std::optional<double> kerb_height_m;
 };
 
 struct StreetRoad {
