@@ -17,6 +17,7 @@ PACKAGES=(
   liboctomap-dev libdynamicedt3d-dev
   libpcl-dev
   libvisp-detection-dev libvisp-core-dev libapriltag-dev
+  libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
 )
