@@ -85,7 +85,12 @@ std::vector<SubRoute> cut_sub_routes(const std::vector<Vec2>& route_ENU, double 
   }
   if (current.points_ENU.size() >= 2) {
     current.end_m = arc;
-    out.push_back(current);
+    if (!out.empty() && arc - current.start_m < 0.01 * subroute_m) {  // a sliver: part of the last piece
+      out.back().points_ENU.insert(out.back().points_ENU.end(), current.points_ENU.begin() + 1, current.points_ENU.end());
+      out.back().end_m = arc;
+    } else {
+      out.push_back(current);
+    }
   }
   return out;
 }

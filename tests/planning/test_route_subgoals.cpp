@@ -24,6 +24,10 @@ TEST(SubRoutes, CutIntoPiecesOfTheConfiguredLength) {
   ASSERT_EQ(l.size(), 4U);
   EXPECT_TRUE(l[1].points_ENU.back().isApprox(Vec2(20, 0)));
   EXPECT_TRUE(cut_sub_routes({Vec2(1, 1), Vec2(1, 1)}, 10.0).empty());
+  // A sliver at the end joins the last piece.
+  const auto sliver = cut_sub_routes({Vec2(0, 0), Vec2(20.05, 0)}, 10.0);
+  ASSERT_EQ(sliver.size(), 2U);
+  EXPECT_NEAR(sliver[1].end_m, 20.05, 1e-9);
   // A corner inside a piece keeps its vertex.
   const auto c = cut_sub_routes(kL, 15.0);
   ASSERT_EQ(c.size(), 3U);

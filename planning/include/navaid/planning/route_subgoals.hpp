@@ -41,8 +41,8 @@ struct SubRoute {
   double start_m = 0, end_m = 0; ///< arc length along the whole route
 };
 
-/// Cuts a polyline (ENU) into consecutive pieces of subroute_m (the last one shorter); pieces share
-/// their end points. Fewer than 2 distinct points: no sub-routes.
+/// Cuts a polyline (ENU) into consecutive pieces of subroute_m (the last one shorter; a last sliver
+/// under 1 % of subroute_m joins the piece before); pieces share their end points. Fewer than 2 distinct points: no sub-routes.
 std::vector<SubRoute> cut_sub_routes(const std::vector<Vec2>& route_ENU, double subroute_m);
 
 struct RouteSubgoal {
