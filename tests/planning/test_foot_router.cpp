@@ -152,3 +152,60 @@ TEST(FootRouter, SnapsToTheNearestEdge) {
 }
 
 }  // namespace
+
+namespace {
+
+const fs::path kOsm = navaid::testing::shared_data_dir() / "osm";
+
+TEST(FootRouterReal, BerlinAcrossStrasseDes17JuniAtSignals) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const FootGraph g = load_osm_foot_graph(kOsm / "berlin-siegessaeule.osm.gz");
+  const Route r = FootRouter(g).route(GeoPoint{52.5145, 13.3480}, GeoPoint{52.5145, 13.3522});
+  ASSERT_TRUE(r.found()) << r.reason;
+  EXPECT_GT(r.length_m, 285.0);  // longer than the straight line (~285 m): round the Großer Stern
+  EXPECT_LT(r.length_m, 600.0);
+  ASSERT_GE(r.crossings.size(), 1U);
+  for (const RouteCrossing& c : r.crossings) {
+    EXPECT_EQ(c.info.control, CrossingControl::kTrafficSignals) << c.street;
+    EXPECT_EQ(c.street, "Straße des 17. Juni");
+  }
+}
+
+TEST(FootRouterReal, ParisCrossesAtTactileZebraCrossings) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  const FootGraph g = load_osm_foot_graph(kOsm / "paris_bss.osm.pbf");
+  const Route r = FootRouter(g).route(GeoPoint{48.8620, 2.3600}, GeoPoint{48.8660, 2.3700});
+  ASSERT_TRUE(r.found()) << r.reason;
+  EXPECT_GT(r.length_m, 850.0);  // straight line ~850 m
+  EXPECT_LT(r.length_m, 1400.0);
+  ASSERT_GE(r.crossings.size(), 1U);
+  for (const RouteCrossing& c : r.crossings) {
+    EXPECT_TRUE(c.info.control == CrossingControl::kMarked || c.info.control == CrossingControl::kTrafficSignals);
+    EXPECT_EQ(c.info.tactile_paving, std::optional<bool>(true));
+  }
+}
+
+TEST(FootRouterReal, EveryRealExtractRoutesBetweenTwoOfItsNodes) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  for (const auto& entry : fs::directory_iterator(kOsm)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find(".osm") == std::string::npos || name == "melborne.osm.pbf") continue;  // melborne: foot=no everywhere
+    const FootGraph g = load_osm_foot_graph(entry.path());
+    ASSERT_FALSE(g.empty()) << name;
+    // Two ends of the first edge with a neighbour: a route exists and is at least the straight line.
+    const FootNode& a = g.nodes[g.edges.front().a];
+    const FootNode& b = g.nodes[g.edges.back().b];
+    const FootRouter router(g);
+    const Route r = router.route(GeoPoint{a.lat_deg, a.lon_deg}, GeoPoint{b.lat_deg, b.lon_deg});
+    EXPECT_TRUE(r.found() || r.status == RouteStatus::kUnreachable) << name << ": " << r.reason;
+    if (r.found()) {
+      EXPECT_GE(r.length_m + 1e-6, haversine_m(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg)) << name;
+    }
+    const Route first = router.route(GeoPoint{a.lat_deg, a.lon_deg}, GeoPoint{g.nodes[g.edges.front().b].lat_deg, g.nodes[g.edges.front().b].lon_deg});
+    EXPECT_TRUE(first.found()) << name << ": " << first.reason;
+    // The two ends of one edge are connected; the route is at most that edge's cost long.
+    EXPECT_LE(first.cost, router.edge_cost(0) + 1e-6) << name;
+  }
+}
+
+}  // namespace
