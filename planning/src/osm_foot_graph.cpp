@@ -141,7 +141,7 @@ FootGraph build(Collector& c) {
       if (previous != kNoNode && previous != node) {
         const FootNode& p = g.nodes[previous];
         const FootNode& q = g.nodes[node];
-        g.edges.push_back(FootEdge{previous, node, way_id, haversine_m(p.lat_deg, p.lon_deg, q.lat_deg, q.lon_deg)});
+        g.edges.push_back(FootEdge{previous, node, way_id, ellipsoidal_length_m(p.lat_deg, p.lon_deg, q.lat_deg, q.lon_deg)});
       }
       previous = node;
     }
@@ -242,11 +242,13 @@ CrossingInfo crossing_from_tags(const OsmTags& tags, bool is_way) {
   const std::string_view markings = tag_value(tags, "crossing:markings");
   if (crossing == "traffic_signals" || signals == "yes" || one_of(ref, {"pelican", "toucan", "puffin", "pegasus"})) {
     c.control = CrossingControl::kTrafficSignals;
+  } else if (crossing == "uncontrolled") {  // the explicit crossing=* value before crossing:markings
+    c.control = CrossingControl::kUncontrolled;
+  } else if (crossing == "unmarked") {
+    c.control = CrossingControl::kUnmarked;
   } else if (one_of(crossing, {"zebra", "marked"}) || ref == "zebra" || (!markings.empty() && markings != "no")) {
     c.control = CrossingControl::kMarked;
-  } else if (crossing == "uncontrolled") {
-    c.control = CrossingControl::kUncontrolled;
-  } else if (crossing == "unmarked" || markings == "no") {
+  } else if (markings == "no") {
     c.control = CrossingControl::kUnmarked;
   } else {
     c.control = CrossingControl::kUnknown;
@@ -299,6 +301,17 @@ std::optional<FootWayKind> classify_foot_way(const OsmTags& tags) {
                             tag_value(tags, "sidewalk:both") == "yes" || tag_value(tags, "sidewalk:left") == "yes" ||
                             tag_value(tags, "sidewalk:right") == "yes";
   return has_sidewalk ? FootWayKind::kRoadWithSidewalk : FootWayKind::kRoad;
+}
+
+double ellipsoidal_length_m(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  constexpr double a = 6378137.0;          // WGS84
+  constexpr double e2 = 6.69437999014e-3;
+  const double phi = 0.5 * (lat1_deg + lat2_deg) * kDeg;
+  const double w = 1.0 - e2 * std::sin(phi) * std::sin(phi);
+  const double meridian = a * (1.0 - e2) / (w * std::sqrt(w));
+  const double normal = a / std::sqrt(w);
+  return std::hypot((lat2_deg - lat1_deg) * kDeg * meridian, (lon2_deg - lon1_deg) * kDeg * normal * std::cos(phi));
 }
 
 double haversine_m(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg) {

@@ -2,6 +2,7 @@
 // every bad input with its exit status (2 bad input, 4 no route).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,12 @@ namespace {
 const std::string kFixture = (fs::path(NAVAID_SOURCE_DIR) / "tests/planning/fixtures/foot_street.osm").string();
 
 nlohmann::json route_json(const fs::path& out) { return nlohmann::json::parse(read_text(out / "route.json")); }
+
+std::string fmt_route(const std::string& osm, double lat1, double lon1, double lat2, double lon2, const std::string& out) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, " --from %.7f,%.7f --to %.7f,%.7f", lat1, lon1, lat2, lon2);
+  return "route --osm '" + osm + "'" + buf + " --out '" + out + "'";
+}
 
 TEST(RouteCli, SignalledCrossingOnTheFixture) {
   const ScratchDir dir("route_cli_fixture");
@@ -99,5 +106,42 @@ TEST(RouteCli, EmptyGraphIsNoRoute) {
   EXPECT_EQ(run.status, 4) << run.output;
   EXPECT_EQ(route_json(dir / "o")["status"], "empty_graph");
 }
+
+}  // namespace
+
+namespace {
+
+// The simulator's street scenarios exported as OSM (navaid scenario-map --osm, docs/scenarios.md):
+// the route between the truth's start and goal has the truth's length, crossings and landmark.
+void check_scenario(const std::string& scenario) {
+  const ScratchDir dir("route_cli_" + scenario);
+  const auto map = navaid_cli("scenario-map --scenario " + scenario + " --osm --out '" + (dir / "map").string() + "'");
+  ASSERT_EQ(map.status, 0) << map.output;
+  const nlohmann::json truth = nlohmann::json::parse(read_text(dir / "map" / "osm_truth.json"));
+  const auto& s = truth["start"];
+  const auto& g = truth["goal"];
+  const auto run = navaid_cli(fmt_route((dir / "map" / "map.osm").string(), s["lat"], s["lon"], g["lat"], g["lon"],
+                                        (dir / "route").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json j = route_json(dir / "route");
+  EXPECT_NEAR(j["length_m"].get<double>(), truth["geodesic_length_m"].get<double>(), 0.05) << scenario;
+  ASSERT_EQ(j["crossings"].size(), truth["crossings"].size()) << scenario;
+  for (std::size_t i = 0; i < j["crossings"].size(); ++i) {
+    const auto& c = j["crossings"][i];
+    const auto& t = truth["crossings"][i];
+    EXPECT_EQ(c["control"], t["crossing"]) << scenario;
+    if (!t["tactile_paving"].is_null()) {
+      EXPECT_EQ(c["tactile_paving"].get<bool>(), t["tactile_paving"] == "yes") << scenario;
+    }
+    // The route's crossing starts at the crossing way's first node; the truth counts to its middle node.
+    EXPECT_NEAR(c["at_m"].get<double>(), t["at_m"].get<double>(), 6.0) << scenario;
+  }
+  const std::string narration = read_text(dir / "route" / "narration.txt");
+  EXPECT_NE(narration.find("the destination is " + truth["landmark"]["name"].get<std::string>()), std::string::npos)
+      << narration;
+}
+
+TEST(RouteCli, SimulatedRoute1MatchesItsTruth) { check_scenario("route1"); }
+TEST(RouteCli, SimulatedRoute2MatchesItsTruth) { check_scenario("route2"); }
 
 }  // namespace

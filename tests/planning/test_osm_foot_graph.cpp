@@ -96,6 +96,11 @@ TEST(CrossingRules, NodeControlFromCrossingTags) {
   EXPECT_EQ(control({{"highway", "crossing"}, {"crossing", "uncontrolled"}}), CrossingControl::kUncontrolled);
   EXPECT_EQ(control({{"highway", "crossing"}, {"crossing", "unmarked"}}), CrossingControl::kUnmarked);
   EXPECT_EQ(control({{"highway", "crossing"}}), CrossingControl::kUnknown);
+  // The explicit crossing=* value wins over crossing:markings (the scenario export's zebra markings).
+  EXPECT_EQ(control({{"highway", "crossing"}, {"crossing", "uncontrolled"}, {"crossing:markings", "zebra"}}),
+            CrossingControl::kUncontrolled);
+  EXPECT_EQ(control({{"highway", "crossing"}, {"crossing:markings", "zebra"}}), CrossingControl::kMarked);
+  EXPECT_EQ(control({{"highway", "crossing"}, {"crossing:markings", "no"}}), CrossingControl::kUnmarked);
   // crossing=* on a traffic-signals node (the road node of a signalled crossing).
   EXPECT_EQ(control({{"highway", "traffic_signals"}, {"crossing", "traffic_signals"}}), CrossingControl::kTrafficSignals);
   EXPECT_EQ(control({{"highway", "traffic_signals"}}), CrossingControl::kNone);
@@ -148,7 +153,9 @@ TEST(OsmFootGraph, HandMadeFixtureCounts) {
   for (const FootEdge& e : g.edges) {
     if (g.ways[e.way].osm_id == 1001) road += e.length_m;
   }
-  EXPECT_NEAR(road, 200.0, 0.5);
+  // The fixture was laid out with 111.2 km per degree; WGS84 at 48 N has 111.526 km per degree of
+  // longitude / cos(lat) (prime-vertical radius 6389.96 km): 200.59 m.
+  EXPECT_NEAR(road, 200.0 * 6389960.0 * 3.14159265358979 / 180.0 / 111200.0, 0.02);
   // The signalled crossing way took its middle node's control and tactile paving.
   for (const FootWay& w : g.ways) {
     if (w.osm_id == 2005) {

@@ -79,7 +79,7 @@ struct FootNode {
 struct FootEdge {
   std::uint32_t a = 0, b = 0;  ///< node indices
   std::uint32_t way = 0;       ///< index into FootGraph::ways
-  double length_m = 0;         ///< great-circle length (haversine, mean Earth radius)
+  double length_m = 0;         ///< WGS84 length (ellipsoidal_length_m)
 };
 
 /// A named point of interest for the narration: name=* with amenity=*, shop=* or tourism=*.
@@ -121,6 +121,9 @@ FootGraph load_osm_foot_graph(const std::filesystem::path& path);
 /// The same from bytes in memory; `format` is "osm" (XML) or "pbf". `name` names it in errors.
 FootGraph parse_osm_foot_graph(std::string_view data, const std::string& format, const std::string& name = "<memory>");
 
+/// Length [m] of a short segment on the WGS84 ellipsoid: north and east offsets with the meridian
+/// and prime-vertical radii of curvature at the mean latitude (mm-accurate for edges up to ~1 km).
+double ellipsoidal_length_m(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
 /// Great-circle distance [m] on the mean-radius sphere (6371008.8 m).
 double haversine_m(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
 
