@@ -24,6 +24,9 @@ void write_route_png(const std::filesystem::path& path, const FootGraph& graph, 
   lo -= Vec2(30, 30);
   hi += Vec2(30, 30);
   const double span = std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  const Vec2 centre = 0.5 * (lo + hi);  // a square view centred on the route
+  lo = centre - Vec2(span / 2, span / 2);
+  hi = centre + Vec2(span / 2, span / 2);
   const int size = 1000;
   const double scale = size / span;
   const int legend_h = 30;
