@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr double kRadius = 6371008.8;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double crossing_penalty(const FootRouteConfig& c, const CrossingInfo& x) {
   double p = 0;
@@ -168,15 +169,39 @@ FootRouter::FootRouter(const FootGraph& graph, FootRouteConfig config) : graph_(
     }
     edge_cost_[i] = c;
   }
+  constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
+  component_.assign(graph.nodes.size(), kUnset);
+  std::uint32_t label = 0;
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t seed = 0; seed < graph.nodes.size(); ++seed) {
+    if (component_[seed] != kUnset) continue;
+    component_[seed] = label;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const std::uint32_t n = stack.back();
+      stack.pop_back();
+      for (std::uint32_t k = graph.offsets[n]; k < graph.offsets[n + 1]; ++k) {
+        const std::uint32_t m = graph.other(graph.adjacency[k], n);
+        if (component_[m] == kUnset) {
+          component_[m] = label;
+          stack.push_back(m);
+        }
+      }
+    }
+    ++label;
+  }
 }
 
-std::optional<EdgeSnap> FootRouter::snap(const GeoPoint& p) const {
+std::optional<EdgeSnap> FootRouter::snap(const GeoPoint& p, std::optional<std::uint32_t> component) const {
   if (graph_.edges.empty()) return std::nullopt;
+  bool any = false;
   const double mx = std::cos(p.lat_deg * kDeg) * kRadius * kDeg;  // metres per degree of longitude
   const double my = kRadius * kDeg;
   EdgeSnap best;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::uint32_t i = 0; i < graph_.edges.size(); ++i) {
+    if (component && component_[graph_.edges[i].a] != *component) continue;
+    any = true;
     const FootNode& a = graph_.nodes[graph_.edges[i].a];
     const FootNode& b = graph_.nodes[graph_.edges[i].b];
     const double ax = (a.lon_deg - p.lon_deg) * mx, ay = (a.lat_deg - p.lat_deg) * my;
@@ -193,6 +218,7 @@ std::optional<EdgeSnap> FootRouter::snap(const GeoPoint& p) const {
       best.point = GeoPoint{a.lat_deg + t * (b.lat_deg - a.lat_deg), a.lon_deg + t * (b.lon_deg - a.lon_deg)};
     }
   }
+  if (!any) return std::nullopt;
   best.distance_m = std::sqrt(best_d2);
   return best;
 }
@@ -210,8 +236,25 @@ Route FootRouter::route(const GeoPoint& from, const GeoPoint& to) const {
     r.reason = "the map has no walkable ways";
     return r;
   }
-  const EdgeSnap start = *snap(from);
-  const EdgeSnap goal = *snap(to);
+  EdgeSnap start = *snap(from);
+  EdgeSnap goal = *snap(to);
+  const std::uint32_t start_component = component_[graph_.edges[start.edge].a];
+  const std::uint32_t goal_component = component_[graph_.edges[goal.edge].a];
+  if (start_component != goal_component && start.distance_m <= config_.max_snap_m &&
+      goal.distance_m <= config_.max_snap_m) {
+    // Different pieces of the graph: move one end into the other's piece, the cheaper move first.
+    const std::optional<EdgeSnap> goal_moved = snap(to, start_component);
+    const std::optional<EdgeSnap> start_moved = snap(from, goal_component);
+    const double goal_extra = goal_moved ? goal_moved->distance_m - goal.distance_m : kInf;
+    const double start_extra = start_moved ? start_moved->distance_m - start.distance_m : kInf;
+    if (goal_extra <= start_extra && goal_moved && goal_moved->distance_m <= config_.max_snap_m) {
+      goal = *goal_moved;
+    } else if (start_moved && start_moved->distance_m <= config_.max_snap_m) {
+      start = *start_moved;
+    } else if (goal_moved && goal_moved->distance_m <= config_.max_snap_m) {
+      goal = *goal_moved;
+    }
+  }
   r.start_snap_m = start.distance_m;
   r.goal_snap_m = goal.distance_m;
   for (const auto& [name, s] : {std::pair<const char*, const EdgeSnap&>{"start", start}, {"destination", goal}}) {

@@ -209,3 +209,35 @@ TEST(FootRouterReal, EveryRealExtractRoutesBetweenTwoOfItsNodes) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(FootRouter, AnIsolatedPieceNextToTheDestinationDoesNotStrandTheRoute) {
+  // A 100 m street footway (1-2) and, 3 m beside the destination, an isolated 5 m courtyard
+  // footway (3-4); the destination is 8 m from the street footway.
+  const std::string xml = R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6" generator="test">
+ <node id="1" lat="48.0000000" lon="11.0000000"/>
+ <node id="2" lat="48.0000000" lon="11.0013441"/>
+ <node id="3" lat="48.0001000" lon="11.0010000"/>
+ <node id="4" lat="48.0001000" lon="11.0010672"/>
+ <way id="10"><nd ref="1"/><nd ref="2"/><tag k="highway" v="footway"/></way>
+ <way id="11"><nd ref="3"/><nd ref="4"/><tag k="highway" v="footway"/></way>
+</osm>
+)";
+  const FootGraph g = parse_osm_foot_graph(xml, "osm");
+  const FootRouter router(g);
+  EXPECT_NE(router.component(0), router.component(2));
+  const GeoPoint to{48.0000730, 11.0010300};  // 3.0 m south of the courtyard way, 8.1 m north of the street
+  const Route r = router.route(GeoPoint{48.0, 11.0001}, to);
+  ASSERT_TRUE(r.found()) << r.reason;
+  EXPECT_NEAR(r.goal_snap_m, 8.1, 0.2);
+  EXPECT_TRUE(uses_way(r, g, 10));
+  EXPECT_FALSE(uses_way(r, g, 11));
+  // Beyond max_snap_m the move is refused and the destination stays unreachable.
+  FootRouteConfig tight;
+  tight.max_snap_m = 5.0;
+  EXPECT_EQ(FootRouter(g, tight).route(GeoPoint{48.0, 11.0001}, to).status, RouteStatus::kUnreachable);
+}
+
+}  // namespace

@@ -4,6 +4,7 @@
 // uncontrolled or unmarked ones, and (when configured) avoid steps. Costs: docs/routing.md.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,10 +81,15 @@ class FootRouter {
  public:
   explicit FootRouter(const FootGraph& graph, FootRouteConfig config = {});
 
-  /// The nearest edge to p (nullopt on an empty graph).
-  std::optional<EdgeSnap> snap(const GeoPoint& p) const;
+  /// The nearest edge to p (nullopt on an empty graph, or when no edge lies in `component`).
+  std::optional<EdgeSnap> snap(const GeoPoint& p, std::optional<std::uint32_t> component = std::nullopt) const;
+  /// Connected component of a node (components are numbered by the router).
+  std::uint32_t component(std::uint32_t node) const { return component_[node]; }
   /// Cost of traversing edge e fully.
   double edge_cost(std::uint32_t e) const { return edge_cost_[e]; }
+  /// When the nearest edges of the two points lie in different connected components (an isolated
+  /// courtyard footway next to the street network), the point whose re-snap into the other's
+  /// component costs the smaller extra distance is moved there, if that stays within max_snap_m.
   Route route(const GeoPoint& from, const GeoPoint& to) const;
 
   const FootGraph& graph() const { return graph_; }
@@ -93,6 +99,7 @@ class FootRouter {
   const FootGraph& graph_;
   FootRouteConfig config_;
   std::vector<double> edge_cost_;
+  std::vector<std::uint32_t> component_;
 };
 
 /// True when the latitude is in [-90, 90] and the longitude in [-180, 180] (and both finite).
