@@ -4,7 +4,8 @@
 # run through the sliding-window estimator and evaluated against ground truth, the semantic map of
 # the image walk (built during the estimator's run, and again from ground truth), a small reproduction
 # of the RGBD-VIO paper's Table I (navaid reproduce rgbd-vio-table1 --quick), the Smart Cane paper's
-# Table I (A* vs the walking-path generator) with plans on the real Willow office map, and a summary and
+# Table I (A* vs the walking-path generator) with plans on the real Willow office map, narrated
+# offline routes on real OpenStreetMap extracts and the route2 scenario's OSM export, and a summary and
 # plot of real recorded data from ../shared/data (a GNSS receiver capture and the EuRoC V1_02
 # ground truth).
 # Usage: bash scripts/main-job.sh [OUT_DIR]   (default out/main-job)
@@ -54,6 +55,12 @@ $NAVAID plan --map "$DATA/ros-map-willow/willow-full-0.05.yaml" --planner wpg --
   --out "$OUT/plan-willow-wpg"
 $NAVAID plan --map "$DATA/ros-map-willow/willow-full-0.05.yaml" --planner astar --start 5.6,20,90 --goal 35,40 \
   --set planning.grid.base_clearance_m=0.3 --out "$OUT/plan-willow-astar"
+
+echo "== Offline pedestrian routes on real OpenStreetMap extracts (Berlin Siegessaeule, Paris), narrated"
+$NAVAID route --osm "$DATA/osm/berlin-siegessaeule.osm.gz" --from 52.5145,13.3480 --to 52.5145,13.3522 \
+  --out "$OUT/route-berlin"
+$NAVAID route --osm "$DATA/osm/paris_bss.osm.pbf" --from 48.8620,2.3600 --to 48.8660,2.3700 --out "$OUT/route-paris"
+$NAVAID scenario-map --scenario route2 --osm --out "$OUT/route2-osm"
 
 echo "== GNSS capture: summary, conversion to a navaid recording, ENU track"
 $NAVAID info "$DATA/gpsd-nmea/haicom-305N.log" | tee "$OUT/gnss-capture-info.txt"
