@@ -167,10 +167,8 @@ void validate(const LabelConfusionConfig& c, const std::string& source) {
       throw ConfigError(source, key, "expected a value in (0, 1], found " + str(a));
     }
   }
-  std::array<bool, K> has_partner{};
-  for (std::size_t i = 0; i < c.confusions.size(); ++i) {
-    const ConfusionPair& p = c.confusions[i];
-    const std::string key = "confusions[" + std::to_string(i) + "]";
+  // What both kinds of confusion pair need: two labelled classes, not the same, a weight > 0.
+  const auto check_pair = [&](const ConfusionPair& p, const std::string& key) {
     if (!labelled_class(p.a) || !labelled_class(p.b)) {
       throw ConfigError(source, key, "expected two labelled classes (not 'unlabeled', ids < " + std::to_string(K) + ")");
     }
@@ -178,6 +176,12 @@ void validate(const LabelConfusionConfig& c, const std::string& source) {
     if (!std::isfinite(p.weight) || p.weight <= 0.0) {
       throw ConfigError(source, key + ".weight", "expected a finite value > 0, found " + str(p.weight));
     }
+  };
+  std::array<bool, K> has_partner{};
+  for (std::size_t i = 0; i < c.confusions.size(); ++i) {
+    const ConfusionPair& p = c.confusions[i];
+    const std::string key = "confusions[" + std::to_string(i) + "]";
+    check_pair(p, key);
     for (std::size_t j = 0; j < i; ++j) {
       const ConfusionPair& q = c.confusions[j];
       if ((q.a == p.a && q.b == p.b) || (q.a == p.b && q.b == p.a)) {
@@ -190,13 +194,7 @@ void validate(const LabelConfusionConfig& c, const std::string& source) {
   for (std::size_t i = 0; i < c.one_way_confusions.size(); ++i) {
     const ConfusionPair& p = c.one_way_confusions[i];
     const std::string key = "one_way_confusions[" + std::to_string(i) + "]";
-    if (!labelled_class(p.a) || !labelled_class(p.b)) {
-      throw ConfigError(source, key, "expected two labelled classes (not 'unlabeled', ids < " + std::to_string(K) + ")");
-    }
-    if (p.a == p.b) throw ConfigError(source, key, "a class cannot be confused with itself ('" + name(idx(p.a)) + "')");
-    if (!std::isfinite(p.weight) || p.weight <= 0.0) {
-      throw ConfigError(source, key + ".weight", "expected a finite value > 0, found " + str(p.weight));
-    }
+    check_pair(p, key);
     for (std::size_t j = 0; j < i; ++j) {
       const ConfusionPair& q = c.one_way_confusions[j];
       if (q.a == p.a && q.b == p.b) {

@@ -1,3 +1,4 @@
+#include "pinhole_calibration.hpp"
 #include "navaid/simulation/rgbd_renderer.hpp"
 
 #include <gtest/gtest.h>
@@ -8,16 +9,6 @@
 
 namespace navaid::simulation {
 namespace {
-
-CameraCalibration pinhole(int w, int h, double f) {
-  CameraCalibration c;
-  c.width = w;
-  c.height = h;
-  c.fx = c.fy = f;
-  c.cx = 0.5 * (w - 1);
-  c.cy = 0.5 * (h - 1);
-  return c;
-}
 
 CameraCalibration radtan(int w, int h, double f) {
   CameraCalibration c = pinhole(w, h, f);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "pinhole_calibration.hpp"
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/io/targets_csv.hpp"
@@ -20,16 +21,6 @@
 
 namespace navaid::simulation {
 namespace {
-
-CameraCalibration pinhole(int w, int h, double f) {
-  CameraCalibration c;
-  c.width = w;
-  c.height = h;
-  c.fx = c.fy = f;
-  c.cx = 0.5 * (w - 1);
-  c.cy = 0.5 * (h - 1);
-  return c;
-}
 
 // Camera at `eye` looking at `target`, image x right, y down, with W z up.
 SE3 look_at(const Vec3& eye, const Vec3& target) {
