@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <set>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/reproduction_statistics.hpp"
@@ -30,6 +31,15 @@ T field(const YAML::Node& node, const char* key, const std::string& file, const 
     return node[key].as<T>();
   } catch (const YAML::Exception& e) {
     throw ConfigError(file, where + key, std::string("has the wrong type: ") + e.what());
+  }
+}
+
+// A key the spec does not know is a typo that would silently change what is run.
+void known_keys_only(const YAML::Node& node, const std::set<std::string>& known, const std::string& file,
+                     const std::string& where) {
+  for (const auto& kv : node) {
+    const std::string k = kv.first.as<std::string>();
+    if (!known.count(k)) throw ConfigError(file, where + k, "unknown key");
   }
 }
 
@@ -290,12 +300,15 @@ PlannerTableSpec read_planner_table_spec(const fs::path& file) {
     throw IoError(file.string(), std::string("cannot read: ") + e.what());
   }
   const std::string f = file.string();
+  if (!root.IsMap()) throw ConfigError(f, "", "expected a map with maps, planners, pairs, seed, clearance_m, quick");
+  known_keys_only(root, {"maps", "planners", "pairs", "seed", "clearance_m", "quick"}, f, "");
   PlannerTableSpec s;
   if (!root["maps"] || !root["maps"].IsSequence() || root["maps"].size() == 0)
     throw ConfigError(f, "maps", "needs a list of maps");
   for (std::size_t i = 0; i < root["maps"].size(); ++i) {
     const YAML::Node m = root["maps"][i];
     const std::string where = fmt::format("maps[{}].", i);
+    known_keys_only(m, {"name", "scenario", "resolution_m", "min_distance_m", "set"}, f, where);
     PlannerTableMap map;
     map.name = field<std::string>(m, "name", f, where);
     map.scenario = m["scenario"] ? field<std::string>(m, "scenario", f, where) : map.name;
@@ -310,6 +323,7 @@ PlannerTableSpec read_planner_table_spec(const fs::path& file) {
   for (std::size_t i = 0; i < root["planners"].size(); ++i) {
     const YAML::Node p = root["planners"][i];
     const std::string where = fmt::format("planners[{}].", i);
+    known_keys_only(p, {"name", "planner", "set"}, f, where);
     PlannerTablePlanner planner;
     planner.name = field<std::string>(p, "name", f, where);
     planner.planner = p["planner"] ? field<std::string>(p, "planner", f, where) : planner.name;
@@ -322,6 +336,7 @@ PlannerTableSpec read_planner_table_spec(const fs::path& file) {
   if (s.pairs < 2) throw ConfigError(f, "pairs", "needs at least 2 (a spread and an interval)");
   if (root["quick"]) {
     const YAML::Node q = root["quick"];
+    known_keys_only(q, {"maps", "pairs"}, f, "quick.");
     if (q["maps"]) s.quick_maps = field<std::vector<std::string>>(q, "maps", f, "quick.");
     if (q["pairs"]) s.quick_pairs = field<std::size_t>(q, "pairs", f, "quick.");
   }

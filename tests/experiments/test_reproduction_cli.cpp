@@ -120,4 +120,9 @@ TEST(ReproduceCli, SmartCaneTable1BadSpecsAreClearErrors) {
                                  "' --out '" + (dir / "o4").string() + "'");
   EXPECT_EQ(badset.status, 2);
   EXPECT_NE(badset.output.find("names no planner 'rrt'"), std::string::npos) << badset.output;
+  write_text(dir / "typo.yaml", "maps: [{name: pillar, min_distance: 20}]\nplanners: [{name: wpg}, {name: astar}]\n");
+  const auto typo = navaid_cli("reproduce smart-cane-table1 --matrix '" + (dir / "typo.yaml").string() + "' --out '" +
+                               (dir / "o5").string() + "'");
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.output.find("key 'maps[0].min_distance': unknown key"), std::string::npos) << typo.output;
 }
