@@ -18,6 +18,9 @@ PACKAGES=(
   libpcl-dev
   libvisp-detection-dev libvisp-core-dev libapriltag-dev
   libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
+  libespeak-ng-dev espeak-ng-data
+  libpocketsphinx-dev libsphinxbase-dev pocketsphinx-en-us
+  socat
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
 )

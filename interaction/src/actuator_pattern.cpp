@@ -1,0 +1,21 @@
+#include "navaid/interaction/actuator_pattern.hpp"
+
+#include "enum_names.hpp"
+
+namespace navaid::interaction {
+
+namespace {
+
+constexpr detail::NameTable<DeviceKind, 4> kNames{{
+    {DeviceKind::kBelt, "belt"},
+    {DeviceKind::kHand, "hand"},
+    {DeviceKind::kRumble, "rumble"},
+    {DeviceKind::kWheel, "wheel"},
+}};
+
+}  // namespace
+
+std::string_view to_string(DeviceKind kind) { return detail::name_of(kNames, kind); }
+std::optional<DeviceKind> device_kind_from_string(std::string_view name) { return detail::value_of(kNames, name); }
+
+}  // namespace navaid::interaction

@@ -1,0 +1,49 @@
+#include "navaid/interaction/cue.hpp"
+
+#include "enum_names.hpp"
+
+namespace navaid::interaction {
+
+namespace {
+
+constexpr detail::NameTable<CueKind, 8> kKindNames{{
+    {CueKind::kStop, "stop"},
+    {CueKind::kObstacle, "obstacle"},
+    {CueKind::kArrive, "arrive"},
+    {CueKind::kTurn, "turn"},
+    {CueKind::kVeer, "veer"},
+    {CueKind::kOnCourse, "on-course"},
+    {CueKind::kObjectDirection, "object-direction"},
+    {CueKind::kSystem, "system"},
+}};
+
+constexpr detail::NameTable<CueIntensity, 2> kIntensityNames{{
+    {CueIntensity::kLow, "low"},
+    {CueIntensity::kHigh, "high"},
+}};
+
+}  // namespace
+
+std::string_view to_string(CueKind kind) { return detail::name_of(kKindNames, kind); }
+std::optional<CueKind> cue_kind_from_string(std::string_view name) { return detail::value_of(kKindNames, name); }
+
+std::string_view to_string(CueIntensity intensity) { return detail::name_of(kIntensityNames, intensity); }
+std::optional<CueIntensity> cue_intensity_from_string(std::string_view name) {
+  return detail::value_of(kIntensityNames, name);
+}
+
+int default_priority(CueKind kind) {
+  switch (kind) {
+    case CueKind::kStop: return 100;
+    case CueKind::kObstacle: return 80;
+    case CueKind::kArrive: return 60;
+    case CueKind::kTurn: return 50;
+    case CueKind::kObjectDirection: return 45;
+    case CueKind::kVeer: return 40;
+    case CueKind::kSystem: return 30;
+    case CueKind::kOnCourse: return 20;
+  }
+  return 0;
+}
+
+}  // namespace navaid::interaction

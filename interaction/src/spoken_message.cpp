@@ -1,0 +1,19 @@
+#include "navaid/interaction/spoken_message.hpp"
+
+#include "enum_names.hpp"
+
+namespace navaid::interaction {
+
+namespace {
+
+constexpr detail::NameTable<MessageCategory, 3> kNames{{
+    {MessageCategory::kRoute, "route"},
+    {MessageCategory::kAction, "action"},
+    {MessageCategory::kSystem, "system"},
+}};
+
+}  // namespace
+
+std::string_view to_string(MessageCategory category) { return detail::name_of(kNames, category); }
+
+}  // namespace navaid::interaction

@@ -1,0 +1,27 @@
+#include "navaid/interaction/system_event.hpp"
+
+#include "enum_names.hpp"
+
+namespace navaid::interaction {
+
+namespace {
+
+constexpr detail::NameTable<SystemEventKind, 8> kNames{{
+    {SystemEventKind::kInitialized, "initialized"},
+    {SystemEventKind::kEstimatorMode, "estimator_mode"},
+    {SystemEventKind::kNetworkLost, "network_lost"},
+    {SystemEventKind::kNetworkRestored, "network_restored"},
+    {SystemEventKind::kLinkLost, "link_lost"},
+    {SystemEventKind::kLinkRestored, "link_restored"},
+    {SystemEventKind::kCameraFault, "camera_fault"},
+    {SystemEventKind::kVoiceCommand, "voice_command"},
+}};
+
+}  // namespace
+
+std::string_view to_string(SystemEventKind kind) { return detail::name_of(kNames, kind); }
+std::optional<SystemEventKind> system_event_kind_from_string(std::string_view name) {
+  return detail::value_of(kNames, name);
+}
+
+}  // namespace navaid::interaction
