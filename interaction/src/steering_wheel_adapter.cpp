@@ -1,0 +1,67 @@
+#include "navaid/interaction/steering_wheel_adapter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "adapter_support.hpp"
+
+namespace navaid::interaction {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+SteeringWheelConfig read_steering_wheel_config(const Config& config) {
+  SteeringWheelConfig c;
+  c.refresh_hz = config.get_double("interaction.wheel.refresh_hz", c.refresh_hz, {1.0, 100.0});
+  c.hold_margin = config.get_double("interaction.wheel.hold_margin", c.hold_margin, {0.01, 1.0});
+  c.max_steering_deg = config.get_double("interaction.wheel.max_steering_deg", c.max_steering_deg, {1.0, 90.0});
+  return c;
+}
+
+SteeringWheelAdapter::SteeringWheelAdapter(const SteeringWheelConfig& config) : config_(config) {
+  detail::require(config_.refresh_hz >= 1.0 && config_.refresh_hz <= 100.0, "wheel: refresh_hz must be in [1, 100]");
+  detail::require(config_.hold_margin >= 0.01 && config_.hold_margin <= 1.0, "wheel: hold_margin must be in [0.01, 1]");
+  detail::require(config_.max_steering_deg >= 1.0 && config_.max_steering_deg <= 90.0,
+                  "wheel: max_steering_deg must be in [1, 90]");
+  hold_ms_ = refresh_hold_ms(1.0 / config_.refresh_hz, config_.hold_margin);
+}
+
+std::string_view SteeringWheelAdapter::actuator_name(int index) const {
+  if (index != kSteering) throw std::out_of_range("wheel: no actuator " + std::to_string(index));
+  return "steering";
+}
+
+std::optional<ActuatorPattern> SteeringWheelAdapter::pattern(const Cue& cue) const {
+  ActuatorPattern p = detail::empty_pattern(cue.t, DeviceKind::kWheel);
+  switch (cue.kind) {
+    case CueKind::kTurn:
+    case CueKind::kVeer:
+    case CueKind::kOnCourse: {
+      // The PI controller's output; without it (another planner) the walking direction itself.
+      const std::optional<double> steer = cue.steering_rad ? cue.steering_rad : cue.direction_rad;
+      if (!steer || !std::isfinite(*steer)) return std::nullopt;
+      const double limit = config_.max_steering_deg * kPi / 180.0;
+      const double mrad = std::round(std::clamp(*steer, -limit, limit) * 1000.0);
+      p.commands.push_back(detail::command(kSteering, static_cast<int>(mrad), 0, 0, hold_ms_));
+      return p;
+    }
+    case CueKind::kStop:
+      // Straight ahead, held: the wheel brakes the cane instead of going limp.
+      p.commands.push_back(detail::command(kSteering, 0, 0, 0, hold_ms_));
+      return p;
+    case CueKind::kArrive:
+      return p;  // ours: the motor released
+    case CueKind::kObstacle:
+    case CueKind::kObjectDirection:
+    case CueKind::kSystem:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace navaid::interaction
