@@ -6,7 +6,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr detail::NameTable<SystemEventKind, 8> kNames{{
+constexpr detail::NameTable<SystemEventKind, 9> kNames{{
     {SystemEventKind::kInitialized, "initialized"},
     {SystemEventKind::kEstimatorMode, "estimator_mode"},
     {SystemEventKind::kNetworkLost, "network_lost"},
@@ -15,6 +15,7 @@ constexpr detail::NameTable<SystemEventKind, 8> kNames{{
     {SystemEventKind::kLinkRestored, "link_restored"},
     {SystemEventKind::kCameraFault, "camera_fault"},
     {SystemEventKind::kVoiceCommand, "voice_command"},
+    {SystemEventKind::kRouteInstruction, "route_instruction"},
 }};
 
 }  // namespace

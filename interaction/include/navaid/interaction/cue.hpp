@@ -55,6 +55,10 @@ struct Cue {
   std::optional<planning::HandDirection> hand;
   /// What to say with it, if anything.
   std::optional<SpokenMessage> message;
+  /// Switch the device off and keep it off until the next haptic cue ("stop guidance").
+  bool clear_haptics = false;
+  /// Said again on request ("repeat", "where am i"): exempt from de-duplication.
+  bool repeat = false;
 };
 
 }  // namespace navaid::interaction
