@@ -38,6 +38,7 @@ void run_map(const MapArgs& a) {
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
   MapSessionOptions options{a.snapshot_every_s, a.png_every_s, !a.no_quality, 0};
   read_obstacle_options(config, options);
+  options.network = mapping::read_segmentation_link_config(config);
   config.reject_unknown_keys();
 
   const io::Recording recording = read_camera_recording(a.recording, "RGB-D frames");
@@ -61,6 +62,7 @@ void run_map(const MapArgs& a) {
   }
 
   options.frames_total = frames.size();
+  options.network_start = recording_start(recording);
   if (a.poses == "run") options.align_to = groundtruth_poses(recording);
   MapSession session(mapper_config, camera, a.recording, a.out, options);
   Progress progress("mapping", frames.size());
@@ -92,6 +94,12 @@ void run_map(const MapArgs& a) {
                            f["not_localised"].get<std::size_t>(), f["too_uncertain"].get<std::size_t>(),
                            f["no_depth"].get<std::size_t>(), f["without_pose"].get<std::size_t>(),
                            summary["time_per_mapped_frame_ms"]["median"].get<double>());
+  if (summary.contains("network")) {
+    const auto& n = summary["network"];
+    std::cout << fmt::format("network: {} of {} outages detected; {} frames mapped geometry only (network.csv)\n",
+                             n["outages_detected"].get<std::size_t>(), n["outages_configured"].get<std::size_t>(),
+                             n["frames_geometry_only"].get<std::size_t>());
+  }
   if (summary.contains("quality")) {
     const auto& q = summary["quality"];
     std::cout << fmt::format("quality: occupancy precision {:.3f}, recall {:.3f}, F1 {:.3f}; semantic accuracy {:.3f}; "

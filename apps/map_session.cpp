@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
@@ -94,6 +95,16 @@ void read_obstacle_options(const Config& config, MapSessionOptions& options) {
                                                              options.obstacle_prior_camera_height_m, {0.05, 5.0});
 }
 
+Timestamp recording_start(const io::Recording& recording) {
+  std::optional<Timestamp> start;
+  const auto earliest = [&start](Timestamp t) { start = start ? std::min(*start, t) : t; };
+  if (!recording.imu.empty()) earliest(recording.imu.front().t);
+  if (!recording.frames.empty()) earliest(recording.frames.front().t);
+  if (!recording.gps.empty()) earliest(recording.gps.front().t);
+  if (!recording.mag.empty()) earliest(recording.mag.front().t);
+  return start.value_or(0);
+}
+
 MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibration& camera,
                        const std::filesystem::path& recording_dir, const std::filesystem::path& out,
                        const MapSessionOptions& options)
@@ -126,6 +137,12 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
                                      (o.scan_min_bearing_rad + static_cast<double>(b) * o.scan_bin_width_rad) * 180.0 / M_PI);
     obstacle_csv_ << "\n";
   }
+  if (options.network) {
+    link_.emplace(*options.network, options.network_start);
+    network_csv_.open(out_ / "network.csv");
+    if (!network_csv_) throw IoError((out_ / "network.csv").string(), "cannot write");
+    network_csv_ << "t_s,event\n";  // seconds after the recording start, as mapping.network.outages
+  }
   timing_ << "t_ns,frame,outcome,sigma_xy_m,sigma_yaw_deg,gated_sigma_xy_m,gated_sigma_yaw_deg,points,occupied_voxels,free_voxels,cloud_ms,insert_ms,"
              "layers_ms,esdf_ms\n";
 }
@@ -136,8 +153,25 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
   ++frames_seen_;
   RgbdFrame frame = unloaded;
   frame.intensity_path.clear();  // the map needs depth, labels and confidence only
+  bool labels_dropped = false;
+  if (link_) {
+    // The server's labels do not reach the edge: this frame maps geometry only.
+    if (!link_->labels_available(frame.t) && (!frame.labels_path.empty() || frame.labels)) {
+      frame.labels_path.clear();
+      frame.confidence_path.clear();
+      frame.labels.reset();
+      frame.label_confidence.reset();
+      labels_dropped = true;
+    }
+    for (const auto& c : link_->take_changes()) {
+      const double t_s = static_cast<double>(c.t - options_.network_start) * 1e-9;
+      spdlog::info("segmentation server {} at {:.3f} s", mapping::network_change_name(c.kind), t_s);
+      network_csv_ << fmt::format("{:.3f},{}\n", t_s, mapping::network_change_name(c.kind));
+    }
+  }
   io::load_frame_images(frame);
   const auto r = mapper_.process(frame, estimate);
+  if (labels_dropped && r.outcome == mapping::FrameOutcome::kMapped) ++geometry_only_;
   if (obstacles_ && !frame.depth.empty()) scan_obstacles(frame, estimate);
   timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", frame.t,
                          frame.index, outcome_name(r.outcome), r.uncertainty.sigma_xy,
@@ -221,6 +255,10 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   if (top_view_.painted_cells() > 0) top_view_.write_png(out_ / "topview.png");
   write_layer_pngs(out_, "");
 
+  const auto voxels = map.occupied_voxels();
+  const auto labelled = static_cast<std::size_t>(std::count_if(voxels.begin(), voxels.end(), [](const mapping::MapVoxel& v) {
+    return v.semantic != SemanticClass::kUnlabeled;
+  }));
   nlohmann::ordered_json j = extra;
   j["frames"] = {{"total", frames_seen_ + no_pose_}, {"without_pose", no_pose_}, {"mapped", n.mapped},
                  {"no_depth", n.no_depth}, {"not_localised", n.not_localised}, {"too_uncertain", n.too_uncertain}};
@@ -230,7 +268,16 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
               {"window_size_m", config_.map.window_size_m},
               {"leaves", map.leaf_count()},
               {"bytes", map.memory_bytes()},
-              {"occupied_voxels_in_window", map.occupied_voxels().size()}};
+              {"occupied_voxels_in_window", voxels.size()},
+              {"labelled_voxels_in_window", labelled}};
+  if (link_) {
+    network_csv_.flush();
+    j["network"] = {{"outages_configured", options_.network->outages.size()},
+                    {"outages_detected", link_->outages_detected()},
+                    {"frames_geometry_only", geometry_only_},
+                    {"check_period_s", options_.network->check_period_s},
+                    {"timeout_s", options_.network->timeout_s}};
+  }
   j["time_per_mapped_frame_ms"] = {{"cloud_median", percentile(cloud_ms_, 0.5)},
                                    {"insert_median", percentile(insert_ms_, 0.5)},
                                    {"layers_median", percentile(layers_ms_, 0.5)},

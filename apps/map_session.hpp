@@ -19,6 +19,7 @@
 #include "navaid/mapping/map_top_view.hpp"
 #include "navaid/mapping/mapper.hpp"
 #include "navaid/mapping/obstacle_pipeline.hpp"
+#include "navaid/mapping/segmentation_link.hpp"
 
 namespace navaid::cli {
 
@@ -38,12 +39,21 @@ struct MapSessionOptions {
   std::optional<mapping::ObstaclePipelineConfig> obstacles = std::nullopt;
   double obstacle_prior_camera_height_m = 0.8;  ///< the prior T_U_C's height (cane mount)
   int obstacle_pixel_stride = 1;                ///< the thesis uses every pixel (its voxel grid thins them)
+  /// mapping.network.*: the simulated cloud segmentation server (eLabrador's edge-cloud split).
+  /// Frames whose labels the link does not deliver are mapped with geometry only; the link's
+  /// changes go to network.csv. Absent: every frame keeps its labels.
+  std::optional<mapping::SegmentationLinkConfig> network = std::nullopt;
+  Timestamp network_start = 0;  ///< the recording start the outages are relative to
 };
 
 /// The obstacle options of a configuration: mapping.obstacles.enabled (false) and
 /// mapping.obstacles.prior_camera_height_m (0.8 m), mapping.obstacles.pixel_stride (1) besides the
 /// pipeline's own keys.
 void read_obstacle_options(const Config& config, MapSessionOptions& options);
+
+/// Where mapping.network.outages count from: the recording's earliest IMU sample, frame, GPS fix
+/// or magnetometer sample (0 for an empty recording).
+Timestamp recording_start(const io::Recording& recording);
 
 /// The recording's ground truth as stamped poses (for MapSessionOptions::align_to).
 std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording);
@@ -78,6 +88,9 @@ class MapSession {
   CameraCalibration camera_;
   std::optional<mapping::ObstaclePipeline> obstacles_;
   std::ofstream obstacle_csv_;
+  std::optional<mapping::SegmentationLink> link_;
+  std::ofstream network_csv_;
+  std::size_t geometry_only_ = 0;  ///< frames mapped without labels because the link was down
   std::filesystem::path out_;
   MapSessionOptions options_;
   mapping::Mapper mapper_;
