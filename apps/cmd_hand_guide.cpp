@@ -1,7 +1,7 @@
 // navaid hand-guide: W-ROMA hand guidance (Sec. IV) on every frame of a recording: the AprilTag
 // detector on the intensity image, the depth patch around the tag's centre, HandGuidance with the
 // frame's StateEstimate (a navaid run's estimates, the ground truth, or none); writes
-// guidance.csv, summary.json and config.yaml and prints the frames per case and hand direction.
+// guidance.csv, guidance_timeline.csv (the input of `navaid cues`), summary.json and config.yaml and prints the frames per case and hand direction.
 // With a simulated recording (targets.csv and ground truth) every frame is also checked against
 // the truth: whether the tag is in view, the detected centre's pixel error, target_H's error.
 #include <fmt/format.h>
@@ -25,6 +25,7 @@
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/run_folder.hpp"
+#include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/targets_csv.hpp"
 #include "navaid/planning/angles.hpp"
@@ -201,6 +202,7 @@ void run(const HandGuideArgs& a) {
   csv << "t_ns,case,hand,reason,action,confidence,target_hx,target_hy,target_hz,heading_deg,detected,tag_u,tag_v,"
          "depth_valid,depth_total,pose,true_in_view,true_u,true_v,true_hx,true_hy,true_hz,detail\n";
 
+  std::vector<interaction::GuidanceTimelineEntry> timeline;  // every command, for navaid cues
   std::map<std::string, std::size_t> per_case, per_direction, per_reason;
   std::size_t detected_frames = 0, in_view = 0, detected_in_view = 0, detected_out_of_view = 0;
   std::optional<std::size_t> first_seen;
@@ -295,8 +297,10 @@ void run(const HandGuideArgs& a) {
     }
     row += "," + csv_quoted(cmd.detail) + "\n";
     csv << row;
+    timeline.emplace_back(cmd);
   }
   progress.finish();
+  interaction::write_guidance_timeline_csv(a.out / "guidance_timeline.csv", timeline);
   csv.close();
   if (!csv) throw IoError(csv_path.string(), "cannot write");
 
@@ -381,7 +385,7 @@ void add_hand_guide_command(CLI::App& app) {
                   "Where poses come from: estimate (--estimate), groundtruth, none (cases I and II only); default: "
                   "estimate with --estimate, else none")
       ->check(CLI::IsMember({"estimate", "groundtruth", "none"}));
-  cmd->add_option("--out", a->out, "Folder to write (guidance.csv, summary.json, config.yaml)");
+  cmd->add_option("--out", a->out, "Folder to write (guidance.csv, guidance_timeline.csv, summary.json, config.yaml)");
   cmd->add_option("--tag-id", a->tag_id, "Id of the target's tag (default: the recording's targets.csv)");
   cmd->add_option("--config", a->config_file, "YAML configuration (planning.hand.*, planning.apriltag.* keys)")
       ->check(CLI::ExistingFile);

@@ -1,6 +1,6 @@
 // navaid rumble: the BYU augmented cane's cost function (FICF or CACF) and rumble table on every
-// scan of a `navaid map` obstacle_scan.csv; writes rumble.csv (t_ns, C_F, C_L, C_R, state) and
-// summary.json, and prints the count per state and the number of state changes.
+// scan of a `navaid map` obstacle_scan.csv; writes rumble.csv (t_ns, C_F, C_L, C_R, state),
+// guidance_timeline.csv (the input of `navaid cues`) and summary.json, and prints the count per state and the number of state changes.
 #include <fmt/format.h>
 
 #include <array>
@@ -12,6 +12,7 @@
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/core/time.hpp"
+#include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/planning/byu_cost_functions.hpp"
 #include "navaid/planning/obstacle_scan_csv.hpp"
 
@@ -49,6 +50,7 @@ void run(const RumbleArgs& a) {
   std::array<double, 4> seconds{};  // a state holds until the next scan
   std::size_t changes = 0;
   std::optional<planning::RumbleState> previous;
+  std::vector<interaction::GuidanceTimelineEntry> timeline;  // one command per scan, for navaid cues
   for (std::size_t i = 0; i < scans.size(); ++i) {
     const planning::ByuCosts c = planning::byu_costs(scans[i], *function, byu);
     const planning::RumbleState state = planning::rumble_state(c, thresholds);
@@ -58,10 +60,19 @@ void run(const RumbleArgs& a) {
     ++count[k];
     if (i + 1 < scans.size()) seconds[k] += ns_to_seconds(scans[i + 1].t - scans[i].t);
     if (previous && *previous != state) ++changes;
+    planning::GuidanceCommand command;
+    command.t = scans[i].t;
+    command.action = planning::GuidanceAction::kGo;
+    command.reason = state == planning::RumbleState::kOff ? planning::GuidanceReason::kPathFound
+                                                          : planning::GuidanceReason::kObstacleAhead;
+    command.confidence = 1.0;  // the scan is in the cane's own frame: no pose uncertainty in it
+    command.rumble = state;
+    timeline.emplace_back(command);
     previous = state;
   }
   csv.close();
   if (!csv) throw IoError(csv_path.string(), "write failed");
+  interaction::write_guidance_timeline_csv(a.out / "guidance_timeline.csv", timeline);
 
   nlohmann::ordered_json states = nlohmann::ordered_json::object();
   for (const planning::RumbleState s : kStates) {
@@ -100,7 +111,7 @@ void add_rumble_command(CLI::App& app) {
   cmd->add_option("--scans", a->scans, "obstacle_scan.csv written by navaid map --set mapping.obstacles.enabled=true")
       ->required();
   cmd->add_option("--function", a->function, "ficf | cacf")->required();
-  cmd->add_option("--out", a->out, "Output folder (rumble.csv, summary.json, config.yaml)")->required();
+  cmd->add_option("--out", a->out, "Output folder (rumble.csv, guidance_timeline.csv, summary.json, config.yaml)")->required();
   cmd->add_option("--config", a->config_file, "YAML configuration (planning.byu.* keys, docs/planning.md)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", a->overrides, "Override a key, e.g. --set planning.byu.cacf.forward_threshold=4 (repeatable)");

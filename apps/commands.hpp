@@ -20,5 +20,6 @@ void add_plan_command(CLI::App& app);
 void add_rumble_command(CLI::App& app);
 void add_hand_guide_command(CLI::App& app);
 void add_route_command(CLI::App& app);
+void add_cues_command(CLI::App& app);
 
 }  // namespace navaid::cli

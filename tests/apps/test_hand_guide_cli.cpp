@@ -17,6 +17,7 @@
 #include "navaid/core/camera.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/targets_csv.hpp"
+#include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -151,6 +152,15 @@ TEST_F(HandGuideCli, GroundTruthPosesDetectTheTagInViewAndGuideTheHandConsistent
   const navaid::SE3 T_B_C = rec.calibration.cameras.front().T_B_C;
   const auto rows = read_guidance(path("gt") / "guidance.csv");
   ASSERT_EQ(rows.size(), rec.frames.size());
+  // The same commands as the guidance timeline navaid cues reads.
+  const auto timeline = navaid::interaction::read_guidance_timeline_csv(path("gt") / "guidance_timeline.csv");
+  ASSERT_EQ(timeline.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& c = std::get<navaid::planning::GuidanceCommand>(timeline[i]);
+    EXPECT_EQ(c.t, rows[i].t) << i;
+    EXPECT_EQ(c.hand ? std::string(navaid::planning::to_string(*c.hand)) : std::string("none"), rows[i].hand) << i;
+    EXPECT_EQ(std::string(navaid::planning::to_string(c.action)), rows[i].action) << i;
+  }
 
   std::size_t near_in_view = 0, near_detected = 0, case1 = 0, case3 = 0, checked_direction = 0, detected_out_of_view = 0;
   std::vector<double> px_error, case1_error, case3_error;

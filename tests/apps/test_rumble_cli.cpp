@@ -106,6 +106,32 @@ TEST_F(RumbleCli, FicfAndCacfOnTheObstacleScansOfASimulatedCaneWalk) {
   }
 }
 
+// The rumble states become the BYU remotes' patterns through navaid cues: every state change on
+// the timeline is a new pattern (left, right or both remotes), off switches them off.
+TEST_F(RumbleCli, ItsGuidanceTimelineDrivesTheRumbleRemotes) {
+  const fs::path out = path("rumble-cues");
+  const auto r = navaid_cli("rumble --function ficf --scans '" + (path("map") / "obstacle_scan.csv").string() + "' --out '" +
+                            out.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto states = read_csv(out / "rumble.csv");
+  const auto timeline = read_csv(out / "guidance_timeline.csv");
+  ASSERT_EQ(timeline.size(), states.size());
+  for (std::size_t i = 1; i < timeline.size(); ++i) EXPECT_EQ(timeline[i][7], states[i][4]) << i;
+  const auto c = navaid_cli("cues --guidance '" + (out / "guidance_timeline.csv").string() +
+                            "' --device rumble --speech text --no-figure --out '" + (out / "cues").string() + "'");
+  ASSERT_EQ(c.status, 0) << c.output;
+  std::size_t changes = 0, on_changes = 0;
+  for (std::size_t i = 2; i < states.size(); ++i) {
+    if (states[i][4] == states[i - 1][4]) continue;
+    ++changes;
+    on_changes += states[i][4] != "off";
+  }
+  const auto s = nlohmann::json::parse(read_text(out / "cues" / "summary.json"));
+  EXPECT_EQ(s["actuators"].size(), 2u);
+  EXPECT_GE(s["outcomes"]["sent"].get<std::size_t>(), on_changes);
+  EXPECT_LE(s["outcomes"]["sent"].get<std::size_t>(), changes + 1);
+}
+
 TEST_F(RumbleCli, KnownAnswersOnAHandWrittenScanFile) {
   // Three scans, 61 bins -30 .. 30 deg: (1) one obstacle straight ahead at 1 m, (2) a wall 0.8 m
   // ahead in every bin, (3) nothing.

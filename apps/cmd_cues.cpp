@@ -1,0 +1,150 @@
+// navaid cues: a guidance timeline (CSV of GuidanceCommands and system events) through the cue
+// generator, the scheduler and one device's adapter; writes the cue timeline (cues.csv), a
+// timeline figure (cues.png), everything spoken (speech.wav) and summary.json.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "figure_script.hpp"
+#include "navaid/core/config.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/interaction/cue_session.hpp"
+#include "navaid/interaction/cue_timeline_csv.hpp"
+#include "navaid/interaction/synthesized_speech.hpp"
+#include "navaid/interaction/wav_file.hpp"
+
+namespace navaid::cli {
+
+namespace {
+
+using namespace navaid::interaction;
+
+struct CuesArgs {
+  std::filesystem::path guidance;
+  std::string device;
+  std::string speech = "on";
+  std::filesystem::path out;
+  std::filesystem::path config_file;
+  std::vector<std::string> overrides;
+  bool no_figure = false;
+};
+
+/// Everything spoken from `t0` on, each message at its start and cut where it was interrupted.
+AudioBuffer mix_speech(const std::vector<CueEvent>& events, const SynthesizedSpeech& speech, Timestamp t0) {
+  AudioBuffer mix;
+  mix.sample_rate_hz = speech.sample_rate_hz();
+  const std::size_t rate = static_cast<std::size_t>(mix.sample_rate_hz);
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const CueEvent& e = events[i];
+    if (e.outcome != CueOutcome::kSpoken || e.t < t0) continue;
+    AudioBuffer audio = speech.audio(e.text);
+    for (std::size_t j = i + 1; j < events.size(); ++j) {
+      const CueEvent& end = events[j];
+      if (end.channel == CueChannel::kSpeech &&
+          (end.outcome == CueOutcome::kInterrupted || end.outcome == CueOutcome::kFinished)) {
+        const auto keep = static_cast<std::size_t>(ns_to_seconds(end.t - e.t) * mix.sample_rate_hz);
+        if (audio.samples.size() > keep) audio.samples.resize(keep);
+        break;
+      }
+    }
+    const auto start = static_cast<std::size_t>(ns_to_seconds(e.t - t0) * static_cast<double>(rate));
+    if (mix.samples.size() < start + audio.samples.size()) mix.samples.resize(start + audio.samples.size(), 0);
+    std::copy(audio.samples.begin(), audio.samples.end(), mix.samples.begin() + static_cast<std::ptrdiff_t>(start));
+  }
+  return mix;
+}
+
+void run(const CuesArgs& a) {
+  const std::optional<DeviceKind> kind = device_kind_from_string(a.device);
+  if (!kind) throw UsageError(fmt::format("--device must be belt, hand, rumble or wheel, not '{}'", a.device));
+  if (a.speech != "on" && a.speech != "off" && a.speech != "text") {
+    throw UsageError(fmt::format("--speech must be on, off or text, not '{}'", a.speech));
+  }
+  std::vector<std::string> overrides = a.overrides;
+  if (a.speech == "text") overrides.push_back("interaction.speech.mode=text");
+  const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", overrides)
+                                              : Config::load(a.config_file, overrides);
+  const CueGeneratorConfig generator = read_cue_generator_config(config);
+  const CuePolicyConfig policy = read_cue_policy_config(config);
+  const std::unique_ptr<DeviceAdapter> device = make_device_adapter(*kind, config);
+  const SpeechConfig speech_config = read_speech_config(config);
+  config.reject_unknown_keys();
+  std::unique_ptr<SynthesizedSpeech> speech;
+  if (a.speech != "off") speech = std::make_unique<SynthesizedSpeech>(speech_config);
+  const std::vector<GuidanceTimelineEntry> timeline = read_guidance_timeline_csv(a.guidance);
+
+  CueSession session(generator, policy, *device, speech.get());
+  for (const GuidanceTimelineEntry& entry : timeline) session.feed(entry);
+  session.drain();
+  const std::vector<CueEvent>& events = session.events();
+
+  std::filesystem::create_directories(a.out);
+  write_cue_timeline_csv(a.out / "cues.csv", events);
+  std::vector<std::string> spoken;
+  for (const CueEvent& e : events) {
+    if (e.outcome == CueOutcome::kSpoken) spoken.push_back(e.text);
+  }
+  double speech_s = 0.0;
+  if (speech && !speech_config.text_only) {
+    const AudioBuffer mix = mix_speech(events, *speech, timeline.empty() ? 0 : entry_time(timeline.front()));
+    write_wav(a.out / "speech.wav", mix);
+    speech_s = mix.duration_s();
+  }
+  std::vector<std::string> names;
+  for (int i = 0; i < device->actuator_count(); ++i) names.emplace_back(device->actuator_name(i));
+
+  nlohmann::ordered_json counts = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < kCueOutcomeCount; ++i) {
+    counts[std::string(to_string(static_cast<CueOutcome>(i)))] = session.scheduler().counts()[i];
+  }
+  nlohmann::ordered_json summary = {
+      {"guidance_file", a.guidance.string()},
+      {"device", std::string(to_string(*kind))},
+      {"actuators", names},
+      {"speech", a.speech},
+      {"language", speech_config.language},
+      {"timeline_entries", timeline.size()},
+      {"events", events.size()},
+      {"outcomes", counts},
+      {"spoken", spoken},
+      {"speech_wav_s", speech_s},
+  };
+  std::ofstream(a.out / "summary.json") << summary.dump(2) << "\n";
+  std::ofstream(a.out / "config.yaml") << config.dump();
+  if (!a.no_figure) {
+    std::string joined;
+    for (const std::string& n : names) joined += (joined.empty() ? "" : ",") + n;
+    run_figure_script("plot_cues.py", {(a.out / "cues.csv").string(), "--actuators", joined, "--device",
+                                       std::string(to_string(*kind)), "--out", (a.out / "cues.png").string()});
+  }
+  std::cout << fmt::format("{}: {} timeline entries -> {} cue events; sent {}, refreshed {}, switched off {}; "
+                           "spoken {}, interrupted {}, rate-limited {}, duplicates {}, expired {}\n",
+                           to_string(*kind), timeline.size(), events.size(), counts["sent"].get<int>(),
+                           counts["refreshed"].get<int>(), counts["switched-off"].get<int>(),
+                           counts["spoken"].get<int>(), counts["interrupted"].get<int>(),
+                           counts["rate-limited"].get<int>(), counts["duplicate"].get<int>(),
+                           counts["expired"].get<int>());
+  for (const std::string& s : spoken) std::cout << "  said: " << s << "\n";
+  std::cout << fmt::format("wrote {}\n", a.out.string());
+}
+
+}  // namespace
+
+void add_cues_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("cues", "Guidance timeline -> cues, actuator patterns, speech (docs/interaction.md)");
+  auto a = std::make_shared<CuesArgs>();
+  cmd->add_option("--guidance", a->guidance, "Guidance timeline CSV (docs/interaction.md)")->required();
+  cmd->add_option("--device", a->device, "belt | hand | rumble | wheel")->required();
+  cmd->add_option("--speech", a->speech, "on (synthesize, speech.wav) | text (no audio) | off");
+  cmd->add_option("--out", a->out, "Output folder (cues.csv, cues.png, speech.wav, summary.json)")->required();
+  cmd->add_option("--config", a->config_file, "YAML configuration (interaction.* keys)")->check(CLI::ExistingFile);
+  cmd->add_option("--set", a->overrides, "Override a key, e.g. --set interaction.belt.intensity=low (repeatable)");
+  cmd->add_flag("--no-figure", a->no_figure, "Skip cues.png");
+  cmd->callback([a] { run(*a); });
+}
+
+}  // namespace navaid::cli
