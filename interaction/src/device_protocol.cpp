@@ -33,19 +33,25 @@ constexpr detail::NameTable<NakReason, 5> kNakNames{{
     {NakReason::kBadLevel, "bad_level"},
 }};
 
-// The host has the memory for a table (the C side computes bit by bit): a different way to the
-// same CRC is part of the cross-check.
-struct CrcTable {
-  std::array<std::uint16_t, 256> v{};
-  constexpr CrcTable() {
+// The host has the memory for tables (the C side computes bit by bit): a different way to the
+// same CRC is part of the cross-check. t1 is the classic byte table; t2 advances a byte through
+// two steps, so that two bytes cost two independent lookups (the CRC is linear:
+// T[a ^ b] = T[a] ^ T[b]), which halves the dependency chain per byte.
+struct CrcTables {
+  std::array<std::uint16_t, 256> t1{};
+  std::array<std::uint16_t, 256> t2{};
+  constexpr CrcTables() {
     for (unsigned i = 0; i < 256; ++i) {
       unsigned c = i << 8;
       for (int b = 0; b < 8; ++b) c = (c & 0x8000u) != 0 ? ((c << 1) ^ 0x1021u) : (c << 1);
-      v[i] = static_cast<std::uint16_t>(c & 0xFFFFu);
+      t1[i] = static_cast<std::uint16_t>(c & 0xFFFFu);
+    }
+    for (unsigned i = 0; i < 256; ++i) {
+      t2[i] = static_cast<std::uint16_t>(((t1[i] & 0xFFu) << 8) ^ t1[t1[i] >> 8]);
     }
   }
 };
-constexpr CrcTable kCrc;
+constexpr CrcTables kCrc;
 
 std::uint16_t le16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
 void put_le16(std::uint8_t* p, std::uint16_t v) {
@@ -74,9 +80,11 @@ std::string_view to_string(AckStatus status) { return detail::name_of(kAckNames,
 std::string_view to_string(NakReason reason) { return detail::name_of(kNakNames, reason); }
 
 std::uint16_t crc16_ccitt_false(const std::uint8_t* data, std::size_t n, std::uint16_t crc) {
-  for (std::size_t i = 0; i < n; ++i) {
-    crc = static_cast<std::uint16_t>((crc << 8) ^ kCrc.v[((crc >> 8) ^ data[i]) & 0xFFu]);
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) {
+    crc = static_cast<std::uint16_t>(kCrc.t2[((crc >> 8) ^ data[i]) & 0xFFu] ^ kCrc.t1[(crc ^ data[i + 1]) & 0xFFu]);
   }
+  if (i < n) crc = static_cast<std::uint16_t>((crc << 8) ^ kCrc.t1[((crc >> 8) ^ data[i]) & 0xFFu]);
   return crc;
 }
 
@@ -222,13 +230,12 @@ int FrameDecoder::check_length(std::uint8_t type, std::size_t len) const {
   return -1;
 }
 
-void FrameDecoder::skip_to_next_sync() {
+std::size_t FrameDecoder::skip_to_next_sync(const std::uint8_t* p, std::size_t n) {
   // Drop the candidate's first byte, then whatever cannot start a frame.
   std::size_t k = 1;
-  while (k < size_ && buf_[k] != protocol::kSync0) ++k;
+  while (k < n && p[k] != protocol::kSync0) ++k;
   counters_.dropped_bytes += k;
-  std::memmove(buf_.data(), buf_.data() + k, size_ - k);
-  size_ -= k;
+  return k;
 }
 
 SequenceStatus FrameDecoder::classify(std::uint8_t type, std::uint16_t seq, const std::uint8_t* payload) {
@@ -249,43 +256,47 @@ SequenceStatus FrameDecoder::classify(std::uint8_t type, std::uint16_t seq, cons
   return SequenceStatus::kNew;
 }
 
-void FrameDecoder::scan(const Callback& on_frame) {
-  while (size_ > 0) {
-    if (buf_[0] != protocol::kSync0 || (size_ >= 2 && buf_[1] != protocol::kSync1)) {
-      skip_to_next_sync();
+std::size_t FrameDecoder::scan(const std::uint8_t* p, std::size_t n, const Callback& on_frame) {
+  // Every decision needs only the bytes of the candidate at `at`, so scanning a whole chunk in
+  // place decides exactly as feeding it byte by byte would; what is left is one partial candidate.
+  std::size_t at = 0;
+  while (at < n) {
+    const std::uint8_t* c = p + at;
+    const std::size_t avail = n - at;
+    if (c[0] != protocol::kSync0 || (avail >= 2 && c[1] != protocol::kSync1)) {
+      at += skip_to_next_sync(c, avail);
       continue;
     }
-    if (size_ < 4) {
-      // The length byte alone can already rule the candidate out.
-      if (size_ == 3 && buf_[2] > protocol::kMaxPayload) {
-        ++counters_.length_errors;
-        ++counters_.resyncs;
-        skip_to_next_sync();
-        continue;
-      }
-      return;
+    if (avail < 3) return at;
+    const std::size_t len = c[2];
+    if (len > protocol::kMaxPayload) {
+      // The length byte alone rules the candidate out.
+      ++counters_.length_errors;
+      ++counters_.resyncs;
+      at += skip_to_next_sync(c, avail);
+      continue;
     }
-    const std::size_t len = buf_[2];
-    const std::uint8_t type = buf_[3];
-    const int fit = len > protocol::kMaxPayload ? 0 : check_length(type, len);
+    if (avail < 4) return at;
+    const std::uint8_t type = c[3];
+    const int fit = check_length(type, len);
     if (fit == 0) {
       ++counters_.length_errors;
       ++counters_.resyncs;
-      skip_to_next_sync();
+      at += skip_to_next_sync(c, avail);
       continue;
     }
     const std::size_t total = protocol::kOverhead + len;
-    if (size_ < total) return;
-    if (crc16_ccitt_false(buf_.data() + 2, 4 + len) != le16(buf_.data() + protocol::kHeaderSize + len)) {
+    if (avail < total) return at;
+    if (crc16_ccitt_false(c + 2, 4 + len) != le16(c + protocol::kHeaderSize + len)) {
       ++counters_.crc_errors;
       ++counters_.resyncs;
-      skip_to_next_sync();
+      at += skip_to_next_sync(c, avail);
       continue;
     }
     DecodedFrame f;
     f.type = type;
-    f.seq = le16(buf_.data() + 4);
-    f.payload = buf_.data() + protocol::kHeaderSize;
+    f.seq = le16(c + 4);
+    f.payload = c + protocol::kHeaderSize;
     f.len = len;
     if (fit < 0) {
       ++counters_.unknown_type;
@@ -298,17 +309,30 @@ void FrameDecoder::scan(const Callback& on_frame) {
       if (f.seq_status != SequenceStatus::kNew) ++counters_.replayed;
     }
     if (on_frame) on_frame(f);
-    std::memmove(buf_.data(), buf_.data() + total, size_ - total);
-    size_ -= total;
+    at += total;
   }
+  return at;
+}
+
+void FrameDecoder::scan_buffer(const Callback& on_frame) {
+  const std::size_t used = scan(buf_.data(), size_, on_frame);
+  std::memmove(buf_.data(), buf_.data() + used, size_ - used);
+  size_ -= used;
 }
 
 void FrameDecoder::feed(const std::uint8_t* data, std::size_t n, const Callback& on_frame) {
-  for (std::size_t i = 0; i < n; ++i) {
-    // scan() never leaves a whole frame's worth of bytes behind, so one more always fits.
-    buf_[size_++] = data[i];
-    scan(on_frame);
+  std::size_t i = 0;
+  // A partial candidate from the last chunk: complete it byte by byte (scan_buffer never leaves a
+  // whole frame's worth behind, so one more byte always fits).
+  while (i < n && size_ > 0) {
+    buf_[size_++] = data[i++];
+    scan_buffer(on_frame);
   }
+  if (i == n) return;
+  // Then straight from the caller's bytes, keeping only a partial candidate at the end.
+  const std::size_t used = scan(data + i, n - i, on_frame);
+  size_ = n - i - used;
+  std::memcpy(buf_.data(), data + i + used, size_);
 }
 
 void FrameDecoder::flush(const Callback& on_frame) {
@@ -317,8 +341,10 @@ void FrameDecoder::flush(const Callback& on_frame) {
   while (size_ > 0) {
     // Whatever is left starts with a sync byte; a full sync pair was a candidate frame.
     if (size_ >= 2) ++counters_.resyncs;
-    skip_to_next_sync();
-    scan(on_frame);
+    const std::size_t k = skip_to_next_sync(buf_.data(), size_);
+    std::memmove(buf_.data(), buf_.data() + k, size_ - k);
+    size_ -= k;
+    scan_buffer(on_frame);
   }
 }
 

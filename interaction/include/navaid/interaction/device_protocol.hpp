@@ -152,8 +152,12 @@ class FrameDecoder {
  private:
   /// 1: known type with a valid length, 0: known type with a wrong length, -1: unknown type.
   int check_length(std::uint8_t type, std::size_t len) const;
-  void scan(const Callback& on_frame);
-  void skip_to_next_sync();
+  /// Decides every candidate in p[0, n); returns how many bytes were used up (the rest is one
+  /// partial candidate).
+  std::size_t scan(const std::uint8_t* p, std::size_t n, const Callback& on_frame);
+  void scan_buffer(const Callback& on_frame);
+  /// Counts and returns how many bytes to drop: the first and those up to the next sync byte.
+  std::size_t skip_to_next_sync(const std::uint8_t* p, std::size_t n);
   SequenceStatus classify(std::uint8_t type, std::uint16_t seq, const std::uint8_t* payload);
 
   FrameDirection direction_;

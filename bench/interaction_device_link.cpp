@@ -1,0 +1,192 @@
+// The device link (docs/device-protocol.md): host encode + decode of a belt PATTERN (5 actuators,
+// 53-byte frame), the host and the controller's C decoder on the same stream and their ratio, the
+// latency from handing a pattern to DeviceLink to its first byte readable on the other end of a
+// pty, and the round trip to the firmware's ACK through the simulated controller. One thread
+// (plus the simulated controller's).
+#include <benchmark/benchmark.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "navaid/interaction/device_link.hpp"
+#include "navaid/interaction/device_protocol.hpp"
+#include "navaid_link.h"
+#include "navaid_link_sim.hpp"
+
+namespace {
+
+using namespace navaid;
+using namespace navaid::interaction;
+
+ActuatorPattern belt_pattern(int k) {
+  ActuatorPattern p;
+  p.device = DeviceKind::kBelt;
+  for (std::uint8_t i = 0; i < 5; ++i) {
+    p.commands.push_back({i, static_cast<std::int16_t>((k * 37 + i * 100) % 1001), 200, 100, 1100});
+  }
+  return p;
+}
+
+std::vector<std::uint8_t> pattern_stream(int frames) {
+  std::vector<std::uint8_t> s;
+  FrameBuffer b;
+  for (int k = 0; k < frames; ++k) {
+    const std::size_t n = encode_pattern(belt_pattern(k), static_cast<std::uint16_t>(k), b.data());
+    s.insert(s.end(), b.begin(), b.begin() + static_cast<long>(n));
+  }
+  return s;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+void BM_HostEncodeDecodePattern(benchmark::State& state) {
+  FrameDecoder decoder(FrameDirection::kHostToDevice);
+  FrameBuffer b;
+  std::size_t got = 0;
+  const FrameDecoder::Callback count = [&](const DecodedFrame&) { ++got; };
+  const ActuatorPattern p = belt_pattern(1);
+  std::uint16_t seq = 0;
+  for (auto _ : state) {
+    const std::size_t n = encode_pattern(p, seq++, b.data());
+    decoder.feed(b.data(), n, count);
+  }
+  if (got != static_cast<std::size_t>(state.iterations())) state.SkipWithError("frames lost");
+  state.SetItemsProcessed(state.iterations());
+  state.SetBytesProcessed(state.iterations() * static_cast<long>(encode_pattern(p, 0, b.data())));
+}
+
+void BM_HostDecodeStream(benchmark::State& state) {
+  const std::vector<std::uint8_t> s = pattern_stream(1000);
+  std::size_t got = 0;
+  const FrameDecoder::Callback count = [&](const DecodedFrame&) { ++got; };
+  for (auto _ : state) {
+    FrameDecoder decoder(FrameDirection::kHostToDevice);
+    decoder.feed(s.data(), s.size(), count);
+  }
+  state.SetItemsProcessed(state.iterations() * 1000);
+  state.SetBytesProcessed(state.iterations() * static_cast<long>(s.size()));
+}
+
+void count_frame(void* ctx, const navaid_link_frame*) { ++*static_cast<std::size_t*>(ctx); }
+
+void BM_FirmwareDecodeStream(benchmark::State& state) {
+  const std::vector<std::uint8_t> s = pattern_stream(1000);
+  std::size_t got = 0;
+  for (auto _ : state) {
+    navaid_link_decoder dec;
+    navaid_link_decoder_init(&dec);
+    navaid_link_decoder_feed(&dec, s.data(), s.size(), &count_frame, &got);
+  }
+  state.SetItemsProcessed(state.iterations() * 1000);
+  state.SetBytesProcessed(state.iterations() * static_cast<long>(s.size()));
+}
+
+// Both decoders timed on the same 1000-frame stream in one benchmark so that their ratio is one
+// number: host frames/s divided by firmware frames/s.
+void BM_DecoderRatioHostOverFirmware(benchmark::State& state) {
+  const std::vector<std::uint8_t> s = pattern_stream(1000);
+  std::size_t got = 0;
+  const FrameDecoder::Callback count = [&](const DecodedFrame&) { ++got; };
+  double host_s = 0.0;
+  double fw_s = 0.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    FrameDecoder decoder(FrameDirection::kHostToDevice);
+    decoder.feed(s.data(), s.size(), count);
+    const auto t1 = std::chrono::steady_clock::now();
+    navaid_link_decoder dec;
+    navaid_link_decoder_init(&dec);
+    navaid_link_decoder_feed(&dec, s.data(), s.size(), &count_frame, &got);
+    const auto t2 = std::chrono::steady_clock::now();
+    host_s += std::chrono::duration<double>(t1 - t0).count();
+    fw_s += std::chrono::duration<double>(t2 - t1).count();
+  }
+  const double frames = static_cast<double>(state.iterations()) * 1000.0;
+  state.counters["host_frames_per_s"] = frames / host_s;
+  state.counters["firmware_frames_per_s"] = frames / fw_s;
+  state.counters["host_over_firmware"] = fw_s / host_s;
+}
+
+/// Latency from DeviceLink::send() to the first byte readable on the pty master. Nobody answers:
+/// each new pattern supersedes the last, which does not change what is measured.
+void BM_PatternToFirstBytePty(benchmark::State& state) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) {
+    state.SkipWithError("no pty");
+    return;
+  }
+  char name[128] = {};
+  ::ptsname_r(master, name, sizeof name);
+  DeviceLink link(name, DeviceKind::kBelt, LinkConfig{});
+  std::uint8_t buf[4096];
+  auto drain = [&] {
+    while (::read(master, buf, sizeof buf) > 0) {
+    }
+  };
+  std::vector<double> us;
+  int k = 0;
+  for (auto _ : state) {
+    drain();
+    const ActuatorPattern p = belt_pattern(k++);
+    const auto t0 = std::chrono::steady_clock::now();
+    link.send(p);
+    pollfd pf{master, POLLIN, 0};
+    if (::poll(&pf, 1, 1000) != 1) {
+      state.SkipWithError("no byte within 1 s");
+      break;
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+  }
+  drain();
+  link.close();
+  ::close(master);
+  state.counters["p50_us"] = percentile(us, 0.50);
+  state.counters["p99_us"] = percentile(us, 0.99);
+  state.counters["max_us"] = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
+}
+
+/// Pattern handed to DeviceLink -> the simulated controller's ACK back, over a pty, as the
+/// LinkReport measures it.
+void BM_PatternRoundTripFirmwarePty(benchmark::State& state) {
+  navaid::firmware_sim::SimulatedController sim(NAVAID_LINK_DEVICE_BELT, 5);
+  DeviceLink link(sim.host_path(), DeviceKind::kBelt, LinkConfig{});
+  int k = 0;
+  for (auto _ : state) {
+    link.send(belt_pattern(k++));
+    const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    while (link.awaiting_ack() && std::chrono::steady_clock::now() < limit) link.poll(0, 5);
+    if (link.awaiting_ack()) {
+      state.SkipWithError("no ACK within 1 s");
+      break;
+    }
+  }
+  const LinkReport r = link.report();
+  std::vector<double> us;
+  for (double ms : r.latency_ms) us.push_back(ms * 1000.0);
+  link.close();
+  state.counters["p50_us"] = percentile(us, 0.50);
+  state.counters["p99_us"] = percentile(us, 0.99);
+  state.counters["retransmits"] = static_cast<double>(r.retransmits);
+}
+
+}  // namespace
+
+BENCHMARK(BM_HostEncodeDecodePattern);
+BENCHMARK(BM_HostDecodeStream);
+BENCHMARK(BM_FirmwareDecodeStream);
+BENCHMARK(BM_DecoderRatioHostOverFirmware);
+BENCHMARK(BM_PatternToFirstBytePty)->Iterations(5000)->UseRealTime();
+BENCHMARK(BM_PatternRoundTripFirmwarePty)->Iterations(2000)->UseRealTime();
