@@ -176,27 +176,29 @@ static void process(navaid_link_decoder* dec, navaid_link_frame_fn fn, void* ctx
 /* ---------------------------------------------------------------------------------------------
  * Device */
 
-static void queue_reply(navaid_link_device* dev, uint8_t type, const uint8_t* payload, uint8_t len) {
+/* 1 when the reply was queued, 0 when it was dropped (counted as a tx overflow). */
+static int queue_reply(navaid_link_device* dev, uint8_t type, const uint8_t* payload, uint8_t len) {
   uint8_t frame[NAVAID_LINK_OVERHEAD + NAVAID_LINK_HEARTBEAT_REPLY_SIZE];
   const size_t size = navaid_link_encode(type, dev->tx_seq, payload, len, frame, sizeof frame);
   size_t i;
   if (size == 0u || dev->tx_len + size > NAVAID_LINK_TX_BUFFER) {
     ++dev->counters.tx_overflows;
-    return;
+    return 0;
   }
   dev->tx_seq = (uint16_t)(dev->tx_seq + 1u);
   for (i = 0; i < size; ++i) {
     dev->tx[(dev->tx_head + dev->tx_len) % NAVAID_LINK_TX_BUFFER] = frame[i];
     ++dev->tx_len;
   }
+  return 1;
 }
 
 static void send_ack(navaid_link_device* dev, uint16_t seq, uint8_t status) {
   uint8_t p[NAVAID_LINK_ACK_SIZE];
   put_u16(p, seq);
   p[2] = status;
-  ++dev->counters.acks_sent;
-  queue_reply(dev, NAVAID_LINK_ACK, p, sizeof p);
+  /* Counted only when it really goes out: a dropped ACK is a tx overflow. */
+  if (queue_reply(dev, NAVAID_LINK_ACK, p, sizeof p)) ++dev->counters.acks_sent;
 }
 
 static void send_nak(navaid_link_device* dev, uint16_t seq, uint8_t reason, uint8_t detail) {
@@ -204,8 +206,7 @@ static void send_nak(navaid_link_device* dev, uint16_t seq, uint8_t reason, uint
   put_u16(p, seq);
   p[2] = reason;
   p[3] = detail;
-  ++dev->counters.naks_sent;
-  queue_reply(dev, NAVAID_LINK_NAK, p, sizeof p);
+  if (queue_reply(dev, NAVAID_LINK_NAK, p, sizeof p)) ++dev->counters.naks_sent;
 }
 
 static void all_off(navaid_link_device* dev) {
@@ -291,7 +292,9 @@ static void on_frame(void* ctx, const navaid_link_frame* f) {
   dev->last_valid_ms = dev->now_ms;
   dev->link_alive = 1;
   if (known < 0) {
-    send_nak(dev, f->seq, NAVAID_LINK_NAK_UNKNOWN_TYPE, f->type);
+    /* A device-to-host type can only be our own reply coming back (a host tty left with echo
+     * on): NAKing it would echo back too and loop at line rate. Only host types are refused. */
+    if (f->type < 0x80u) send_nak(dev, f->seq, NAVAID_LINK_NAK_UNKNOWN_TYPE, f->type);
     return;
   }
   if (f->type == NAVAID_LINK_PATTERN && (size_t)f->payload[1] * NAVAID_LINK_ACTUATOR_SIZE + 2u != f->len) {

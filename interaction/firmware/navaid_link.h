@@ -65,7 +65,7 @@ extern "C" {
 
 /* NAK reasons (the frame had a valid CRC but could not be carried out) */
 #define NAVAID_LINK_NAK_BAD_LENGTH 1u   /* detail: the length byte */
-#define NAVAID_LINK_NAK_UNKNOWN_TYPE 2u /* detail: the type byte */
+#define NAVAID_LINK_NAK_UNKNOWN_TYPE 2u /* detail: the type byte (host types < 0x80 only; device types are ignored) */
 #define NAVAID_LINK_NAK_WRONG_DEVICE 3u /* detail: the device kind in the pattern */
 #define NAVAID_LINK_NAK_BAD_ACTUATOR 4u /* detail: the actuator index (out of range or repeated) */
 #define NAVAID_LINK_NAK_BAD_LEVEL 5u    /* detail: the actuator index */
@@ -144,7 +144,7 @@ typedef struct {
   uint32_t patterns_applied;
   uint32_t all_off_commands;
   uint32_t heartbeats;
-  uint32_t acks_sent;
+  uint32_t acks_sent; /* queued for sending (a reply that did not fit counts as a tx overflow) */
   uint32_t naks_sent;
   uint32_t hold_expiries; /* actuators switched off because their hold ran out */
   uint32_t link_timeouts; /* times everything was switched off because no valid frame came */

@@ -255,6 +255,30 @@ TEST(DeviceFirmware, FullTransmitBufferDropsWholeReplies) {
   EXPECT_EQ(r.size(), NAVAID_LINK_TX_BUFFER / 16);
   EXPECT_EQ(fw.host.decoder().counters().crc_errors, 0u);
   EXPECT_EQ(fw.dev.counters.tx_overflows, 20u - r.size());
+  // ACKs that did not fit are not counted as sent (11 bytes each: 11 fit in 128).
+  Firmware acks;
+  for (std::uint16_t s = 0; s < 20; ++s) acks.rx(testing::host_all_off(s), s);
+  EXPECT_EQ(acks.dev.counters.acks_sent, NAVAID_LINK_TX_BUFFER / 11);
+  EXPECT_EQ(acks.dev.counters.acks_sent + acks.dev.counters.tx_overflows, 20u);
+  EXPECT_EQ(acks.replies().size(), NAVAID_LINK_TX_BUFFER / 11);
+}
+
+TEST(DeviceFirmware, ItsOwnRepliesEchoedBackAreIgnoredNotNaked) {
+  // A host tty left with echo on sends every reply straight back; NAKing those would loop.
+  Firmware fw;
+  fw.rx(testing::host_heartbeat(1), 0);
+  std::uint8_t buf[NAVAID_LINK_TX_BUFFER];
+  const std::size_t n = navaid_link_device_tx(&fw.dev, buf, sizeof buf);
+  ASSERT_GT(n, 0u);
+  fw.rx(Bytes(buf, buf + n), 1);
+  EXPECT_TRUE(fw.replies().empty());
+  EXPECT_EQ(fw.dev.counters.naks_sent, 0u);
+  EXPECT_EQ(fw.dev.dec.counters.unknown_type, 1u);
+  // An unknown host type is still refused.
+  fw.rx(testing::raw_frame(0x10, 2, {}), 2);
+  const auto nak = fw.single_nak();
+  ASSERT_TRUE(nak);
+  EXPECT_EQ(nak->reason, static_cast<std::uint8_t>(NakReason::kUnknownType));
 }
 
 }  // namespace
