@@ -49,9 +49,17 @@ class SimulatedController {
       : kind_(device_kind), actuators_(actuators), link_path_(std::move(link_path)) {
     start();
   }
-  /// A controller on an existing tty (`attach_path`, e.g. a socat pty end).
+  /// An existing tty to run on instead of a new pty.
+  struct AttachTo {
+    std::string path;
+  };
+  /// A controller on an existing tty (e.g. one end of a socat pair).
+  SimulatedController(std::uint8_t device_kind, std::uint8_t actuators, AttachTo tty)
+      : kind_(device_kind), actuators_(actuators), attach_(true), attach_path_(tty.path), slave_path_(tty.path) {
+    start();
+  }
   static SimulatedController attach(std::uint8_t device_kind, std::uint8_t actuators, const std::string& attach_path) {
-    return SimulatedController(device_kind, actuators, attach_path, Attach{});
+    return SimulatedController(device_kind, actuators, AttachTo{attach_path});
   }
   ~SimulatedController() { stop(); }
   SimulatedController(const SimulatedController&) = delete;
@@ -129,12 +137,6 @@ class SimulatedController {
   }
 
  private:
-  struct Attach {};
-  SimulatedController(std::uint8_t device_kind, std::uint8_t actuators, const std::string& attach_path, Attach)
-      : kind_(device_kind), actuators_(actuators), attach_(true), attach_path_(attach_path), slave_path_(attach_path) {
-    start();
-  }
-
   static void make_raw(int fd, const std::string& what) {
     termios tio{};
     if (::tcgetattr(fd, &tio) != 0) throw std::runtime_error(what + ": tcgetattr: " + std::strerror(errno));

@@ -553,3 +553,58 @@ TEST(DeviceLinkFirmware, OverASocatNullModemCable) {
 
 }  // namespace
 }  // namespace navaid::interaction
+
+namespace navaid::interaction {
+namespace {
+
+TEST(DeviceSimCommand, HostLinkTalksToTheCommandLineController) {
+  ScratchDir dir("device_sim_cli");
+  const std::string link_path = (dir / "belt").string();
+  const std::string log = (dir / "sim.log").string();
+  const std::string pid_file = (dir / "sim.pid").string();
+  const std::string cmd = std::string(NAVAID_CLI_PATH) + " device-sim --device belt --link " + link_path +
+                          " --duration 30 --status-s 0 >" + log + " 2>&1 & echo $! >" + pid_file;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string pid_text = navaid::testing::read_text(pid_file);
+  const std::string pid = pid_text.substr(0, pid_text.find('\n'));
+  struct Stop {
+    std::string pid;
+    ~Stop() {
+      if (!pid.empty()) std::system(("kill " + pid + " 2>/dev/null").c_str());
+    }
+  } stop{pid};
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!std::filesystem::exists(link_path) && std::chrono::steady_clock::now() < limit) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(std::filesystem::exists(link_path)) << navaid::testing::read_text(log);
+  FakeClock clock;
+  DeviceLink link(link_path, DeviceKind::kBelt, Config(), clock.fn());
+  link.send(testing::belt_pattern(2, 640, 1100));
+  std::vector<SystemEvent> events;
+  ASSERT_TRUE(poll_until(link, events, [&] { return link.report().acked == 1; }));
+  EXPECT_EQ(link.report().naks, 0u);
+  link.close();
+  ASSERT_EQ(std::system(("kill " + pid).c_str()), 0);
+  stop.pid.clear();
+  std::string out;
+  while (out.find("final:") == std::string::npos && std::chrono::steady_clock::now() < limit) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    out = navaid::testing::read_text(log);
+  }
+  EXPECT_NE(out.find("belt controller (5 actuators)"), std::string::npos) << out;
+  EXPECT_NE(out.find("patterns 1"), std::string::npos) << out;
+  EXPECT_NE(out.find("all_off 1"), std::string::npos) << out;  // close() switched it off
+}
+
+TEST(DeviceSimCommand, UsageErrors) {
+  auto run = navaid::testing::navaid_cli("device-sim --device car --link /tmp/x");
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("--device must be belt, hand, rumble or wheel"), std::string::npos) << run.output;
+  run = navaid::testing::navaid_cli("device-sim --device belt");
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("exactly one of --link"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace navaid::interaction
