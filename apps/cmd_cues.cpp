@@ -1,6 +1,7 @@
-// navaid cues: a guidance timeline (CSV of GuidanceCommands and system events) through the cue
-// generator, the scheduler and one device's adapter; writes the cue timeline (cues.csv), a
-// timeline figure (cues.png), everything spoken (speech.wav) and summary.json.
+// navaid cues: a guidance timeline (CSV of GuidanceCommands and system events, one file or several
+// merged by time) through the cue generator, the scheduler and one device's adapter; writes the
+// cue timeline (cues.csv), a timeline figure (cues.png), everything spoken (speech.wav) and
+// summary.json.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,7 +25,7 @@ namespace {
 using namespace navaid::interaction;
 
 struct CuesArgs {
-  std::filesystem::path guidance;
+  std::vector<std::filesystem::path> guidance;
   std::string device;
   std::string speech = "on";
   std::filesystem::path out;
@@ -58,6 +59,19 @@ AudioBuffer mix_speech(const std::vector<CueEvent>& events, const SynthesizedSpe
   return mix;
 }
 
+/// The timelines of all files on one clock: by time, a tie in the order the files were given.
+std::vector<GuidanceTimelineEntry> merged_timeline(const std::vector<std::filesystem::path>& files) {
+  std::vector<GuidanceTimelineEntry> all;
+  for (const std::filesystem::path& f : files) {
+    std::vector<GuidanceTimelineEntry> one = read_guidance_timeline_csv(f);
+    all.insert(all.end(), std::make_move_iterator(one.begin()), std::make_move_iterator(one.end()));
+  }
+  std::stable_sort(all.begin(), all.end(), [](const GuidanceTimelineEntry& x, const GuidanceTimelineEntry& y) {
+    return entry_time(x) < entry_time(y);
+  });
+  return all;
+}
+
 void run(const CuesArgs& a) {
   const std::optional<DeviceKind> kind = device_kind_from_string(a.device);
   if (!kind) throw UsageError(fmt::format("--device must be belt, hand, rumble or wheel, not '{}'", a.device));
@@ -75,7 +89,7 @@ void run(const CuesArgs& a) {
   config.reject_unknown_keys();
   std::unique_ptr<SynthesizedSpeech> speech;
   if (a.speech != "off") speech = std::make_unique<SynthesizedSpeech>(speech_config);
-  const std::vector<GuidanceTimelineEntry> timeline = read_guidance_timeline_csv(a.guidance);
+  const std::vector<GuidanceTimelineEntry> timeline = merged_timeline(a.guidance);
 
   CueSession session(generator, policy, *device, speech.get());
   for (const GuidanceTimelineEntry& entry : timeline) session.feed(entry);
@@ -97,12 +111,14 @@ void run(const CuesArgs& a) {
   std::vector<std::string> names;
   for (int i = 0; i < device->actuator_count(); ++i) names.emplace_back(device->actuator_name(i));
 
+  std::vector<std::string> files;
+  for (const std::filesystem::path& f : a.guidance) files.push_back(f.string());
   nlohmann::ordered_json counts = nlohmann::ordered_json::object();
   for (std::size_t i = 0; i < kCueOutcomeCount; ++i) {
     counts[std::string(to_string(static_cast<CueOutcome>(i)))] = session.scheduler().counts()[i];
   }
   nlohmann::ordered_json summary = {
-      {"guidance_file", a.guidance.string()},
+      {"guidance_files", files},
       {"device", std::string(to_string(*kind))},
       {"actuators", names},
       {"speech", a.speech},
@@ -137,7 +153,10 @@ void run(const CuesArgs& a) {
 void add_cues_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("cues", "Guidance timeline -> cues, actuator patterns, speech (docs/interaction.md)");
   auto a = std::make_shared<CuesArgs>();
-  cmd->add_option("--guidance", a->guidance, "Guidance timeline CSV (docs/interaction.md)")->required();
+  cmd->add_option("--guidance", a->guidance,
+                  "Guidance timeline CSV (docs/interaction.md); repeat to merge several (a planner's and "
+                  "navaid map's system_events.csv) on one clock")
+      ->required();
   cmd->add_option("--device", a->device, "belt | hand | rumble | wheel")->required();
   cmd->add_option("--speech", a->speech, "on (synthesize, speech.wav) | text (no audio) | off");
   cmd->add_option("--out", a->out, "Output folder (cues.csv, cues.png, speech.wav, summary.json)")->required();

@@ -167,6 +167,10 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
       const double t_s = static_cast<double>(c.t - options_.network_start) * 1e-9;
       spdlog::info("segmentation server {} at {:.3f} s", mapping::network_change_name(c.kind), t_s);
       network_csv_ << fmt::format("{:.3f},{}\n", t_s, mapping::network_change_name(c.kind));
+      network_events_.emplace_back(interaction::SystemEvent{
+          c.t, c.kind == mapping::NetworkChangeKind::kLost ? interaction::SystemEventKind::kNetworkLost
+                                                           : interaction::SystemEventKind::kNetworkRestored,
+          {}});
     }
   }
   io::load_frame_images(frame);
@@ -272,6 +276,7 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
               {"labelled_voxels_in_window", labelled}};
   if (link_) {
     network_csv_.flush();
+    interaction::write_guidance_timeline_csv(out_ / "system_events.csv", network_events_);
     j["network"] = {{"outages_configured", options_.network->outages.size()},
                     {"outages_detected", link_->outages_detected()},
                     {"frames_geometry_only", geometry_only_},

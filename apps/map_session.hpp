@@ -13,6 +13,7 @@
 
 #include "navaid/core/config.hpp"
 #include "navaid/core/state_estimate.hpp"
+#include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/experiments/map_quality.hpp"
 #include "navaid/io/recording.hpp"
 #include "navaid/io/tum_trajectory.hpp"
@@ -90,6 +91,8 @@ class MapSession {
   std::ofstream obstacle_csv_;
   std::optional<mapping::SegmentationLink> link_;
   std::ofstream network_csv_;
+  /// The same changes as system events on the recording's clock (system_events.csv, for navaid cues).
+  std::vector<interaction::GuidanceTimelineEntry> network_events_;
   std::size_t geometry_only_ = 0;  ///< frames mapped without labels because the link was down
   std::filesystem::path out_;
   MapSessionOptions options_;

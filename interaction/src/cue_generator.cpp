@@ -36,7 +36,25 @@ CueGeneratorConfig read_cue_generator_config(const Config& config) {
   c.ttl_haptic_s = config.get_double("interaction.cues.ttl_haptic_s", c.ttl_haptic_s, {0.1, 60.0});
   c.ttl_speech_s = config.get_double("interaction.cues.ttl_speech_s", c.ttl_speech_s, {0.1, 60.0});
   c.ttl_system_s = config.get_double("interaction.cues.ttl_system_s", c.ttl_system_s, {0.1, 60.0});
+  c.modality = *cue_modality_from_string(
+      config.get_string("interaction.cues.modality", "both", {"both", "haptic", "audio"}));
   return c;
+}
+
+std::string_view to_string(CueModality modality) {
+  switch (modality) {
+    case CueModality::kBoth: return "both";
+    case CueModality::kHaptic: return "haptic";
+    case CueModality::kAudio: return "audio";
+  }
+  return "unknown";
+}
+
+std::optional<CueModality> cue_modality_from_string(std::string_view name) {
+  for (const CueModality m : {CueModality::kBoth, CueModality::kHaptic, CueModality::kAudio}) {
+    if (to_string(m) == name) return m;
+  }
+  return std::nullopt;
 }
 
 CueGenerator::CueGenerator(CueGeneratorConfig config) : config_(config) {}
@@ -83,6 +101,36 @@ std::vector<Cue> CueGenerator::locating(Timestamp t) {
 }
 
 std::vector<Cue> CueGenerator::on_guidance(const planning::GuidanceCommand& command) {
+  return for_modality(guidance_cues(command));
+}
+
+std::vector<Cue> CueGenerator::for_modality(std::vector<Cue> cues) const {
+  for (Cue& cue : cues) {
+    switch (config_.modality) {
+      case CueModality::kBoth: break;
+      case CueModality::kHaptic:
+        if (cue.message && cue.message->category == MessageCategory::kAction && cue.kind != CueKind::kStop) {
+          cue.message.reset();
+        }
+        break;
+      case CueModality::kAudio:
+        cue.felt = false;
+        if (cue.message) break;
+        if (cue.kind == CueKind::kVeer && cue.direction_rad) {
+          cue.message = SpokenMessage{MessageCategory::kAction, "bear", {{"side", *cue.direction_rad > 0.0 ? "left" : "right"}}};
+        } else if (cue.kind == CueKind::kObstacle) {
+          const planning::RumbleState r = cue.rumble.value_or(planning::RumbleState::kBoth);
+          const char* way = r == planning::RumbleState::kLeft ? "left" : r == planning::RumbleState::kRight ? "right" : "stop";
+          cue.message = SpokenMessage{MessageCategory::kAction, "obstacle", {{"way", way}}};
+        }
+        if (cue.message) cue.ttl_s = config_.ttl_speech_s;  // now a spoken cue: it may wait as long
+        break;
+    }
+  }
+  return cues;
+}
+
+std::vector<Cue> CueGenerator::guidance_cues(const planning::GuidanceCommand& command) {
   if (guidance_stopped_) return {};
   const Timestamp t = command.t;
   const bool unsure_go = command.action == GuidanceAction::kGo && command.confidence < config_.min_confidence;

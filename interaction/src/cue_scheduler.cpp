@@ -112,7 +112,7 @@ void CueScheduler::haptic_push(const Cue& cue, std::vector<CueEvent>& out) {
     }
     return;
   }
-  if (!is_haptic(cue.kind)) return;
+  if (!is_haptic(cue.kind) || !cue.felt) return;
   if (cue.kind == CueKind::kStop) {
     haptic_next_.reset();
     stop_hold_until_ = after(t, policy_.stop_hold_s);

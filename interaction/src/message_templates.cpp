@@ -59,6 +59,11 @@ const std::vector<Word> kHandDirections{
     {"backward", {"Pull back", "Zurückziehen"}},
 };
 
+// BYU: the rumble side is the freer side, both means stop and search (Table 2.1).
+const std::vector<Word> kObstacleWays{{"left", {"go left", "links ausweichen"}},
+                                      {"right", {"go right", "rechts ausweichen"}},
+                                      {"stop", {"stop", "anhalten"}}};
+
 const std::vector<Word> kRouteTurns{{"left", {"turn left", "links abbiegen"}},
                                     {"right", {"turn right", "rechts abbiegen"}},
                                     {"straight", {"continue straight", "geradeaus weiter"}}};
@@ -77,6 +82,8 @@ const std::vector<Template>& templates() {
       {"target_reached", {}, {"Target reached.", "Ziel erreicht."}},
       {"move_hand", {{"direction", ArgKind::kWord, false, kHandDirections}}, {"{direction}.", "{direction}."}},
       {"prepare_turn", {{"side", ArgKind::kWord, false, kSides}}, {"Prepare to turn {side}.", "Gleich {side} abbiegen."}},
+      {"bear", {{"side", ArgKind::kWord, false, kSides}}, {"Bear {side}.", "Etwas nach {side}."}},
+      {"obstacle", {{"way", ArgKind::kWord, false, kObstacleWays}}, {"Obstacle ahead, {way}.", "Hindernis voraus, {way}."}},
       {"route",
        {{"distance_m", ArgKind::kNumber, false, {}},
         {"turn", ArgKind::kWord, false, kRouteTurns},

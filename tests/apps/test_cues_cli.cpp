@@ -176,6 +176,27 @@ TEST_F(CuesCli, TextModeSchedulesLikeAudioAndOffSpeaksNothing) {
   EXPECT_GT(so["outcomes"]["sent"].get<int>(), 0);
 }
 
+// eLabrador's preference: audio only speaks the directions and sends no pattern; haptic only keeps
+// "Stop!" and the system messages.
+TEST_F(CuesCli, ModalityAudioOrHaptic) {
+  const auto audio = cues("--device belt --speech text --no-figure --set interaction.cues.modality=audio --out '" +
+                          path("audio").string() + "'");
+  ASSERT_EQ(audio.status, 0) << audio.output;
+  const auto sa = nlohmann::json::parse(read_text(path("audio") / "summary.json"));
+  EXPECT_EQ(sa["outcomes"]["sent"].get<int>(), 0);
+  EXPECT_EQ(sa["outcomes"]["refreshed"].get<int>(), 0);
+  EXPECT_NE(sa["spoken"].dump().find("Bear right."), std::string::npos) << sa["spoken"].dump();
+  const auto haptic = cues("--device belt --speech text --no-figure --set interaction.cues.modality=haptic --out '" +
+                           path("haptic").string() + "'");
+  ASSERT_EQ(haptic.status, 0) << haptic.output;
+  const auto sh = nlohmann::json::parse(read_text(path("haptic") / "summary.json"));
+  EXPECT_GT(sh["outcomes"]["sent"].get<int>(), 0);
+  const std::string said = sh["spoken"].dump();
+  EXPECT_EQ(said.find("Prepare to turn"), std::string::npos) << said;
+  EXPECT_NE(said.find("Stop!"), std::string::npos) << said;
+  EXPECT_NE(said.find("Locating, please wait."), std::string::npos) << said;
+}
+
 TEST_F(CuesCli, GermanSpeech) {
   const auto r = cues("--device hand --speech text --no-figure --set interaction.speech.language=de --out '" +
                       path("de").string() + "'");

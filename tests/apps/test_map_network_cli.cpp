@@ -67,6 +67,32 @@ TEST_F(MapNetworkCli, AnOutageMapsGeometryOnlyUntilTheLinkIsRestored) {
   EXPECT_EQ(read_text(path("outage-again") / "network.csv"), read_text(path("outage") / "network.csv"));
 }
 
+// eLabrador's cloud/edge split end to end: the outage reaches the user once, as speech, next to
+// the BYU cane's rumble cues from the same map.
+TEST_F(MapNetworkCli, TheUserIsToldOnceWhenLabelsStopAndOnceWhenTheyAreBack) {
+  const auto r = map("told", "--set 'mapping.network.outages=[1.0,3.0]' --set mapping.obstacles.enabled=true");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto events = read_text(path("told") / "system_events.csv");
+  EXPECT_NE(events.find(",event,,,,,,,,network_lost,"), std::string::npos) << events;
+  EXPECT_NE(events.find(",event,,,,,,,,network_restored,"), std::string::npos) << events;
+  const auto rumble = navaid_cli("rumble --function ficf --scans '" + (path("told") / "obstacle_scan.csv").string() +
+                                 "' --out '" + path("told-rumble").string() + "'");
+  ASSERT_EQ(rumble.status, 0) << rumble.output;
+  const auto cues = navaid_cli("cues --device rumble --speech text --no-figure --guidance '" +
+                               (path("told-rumble") / "guidance_timeline.csv").string() + "' --guidance '" +
+                               (path("told") / "system_events.csv").string() + "' --out '" + path("told-cues").string() + "'");
+  ASSERT_EQ(cues.status, 0) << cues.output;
+  const auto s = nlohmann::json::parse(read_text(path("told-cues") / "summary.json"));
+  EXPECT_EQ(s["guidance_files"].size(), 2u);
+  std::size_t lost = 0, restored = 0;
+  for (const auto& said : s["spoken"]) {
+    lost += said == "Network lost, object recognition paused.";
+    restored += said == "Network restored.";
+  }
+  EXPECT_EQ(lost, 1u) << s["spoken"].dump();
+  EXPECT_EQ(restored, 1u) << s["spoken"].dump();
+}
+
 TEST_F(MapNetworkCli, AnEmptyScheduleKeepsEveryLabelAndABadOneNamesTheKey) {
   const auto r = map("empty", "--set 'mapping.network.outages=[]'");
   ASSERT_EQ(r.status, 0) << r.output;

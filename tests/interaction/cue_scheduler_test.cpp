@@ -181,6 +181,17 @@ TEST_F(CueSchedulerTest, AfterAStopLowerCuesWaitForTheHold) {
   EXPECT_EQ(run.times(CueChannel::kHaptic, CueOutcome::kSent), (std::vector<double>{0.0, 1.0}));
 }
 
+TEST_F(CueSchedulerTest, CuesNotToBeFeltNeverReachTheBelt) {
+  Cue veer = cue(0.0, CueKind::kVeer, "bear", 20.0);
+  veer.felt = false;
+  Cue stop = cue(1.0, CueKind::kStop, "stop");
+  stop.felt = false;
+  const Timeline run = feed(scheduler_, {veer, stop}, 5.0);
+  EXPECT_TRUE(run.of(CueChannel::kHaptic, CueOutcome::kSent).empty());
+  EXPECT_TRUE(run.of(CueChannel::kHaptic, CueOutcome::kRefreshed).empty());
+  EXPECT_EQ(run.times(CueChannel::kSpeech, CueOutcome::kSpoken), (std::vector<double>{0.0, 1.0}));
+}
+
 TEST_F(CueSchedulerTest, StopGuidanceAndInexpressibleCuesSwitchTheBeltOff) {
   Cue clear = cue(0.5, CueKind::kSystem, "guidance_stopped");
   clear.clear_haptics = true;

@@ -53,7 +53,7 @@ TEST(MessageTemplates, EveryTemplateHasBothLanguagesAndDistinctTexts) {
     for (const std::string& a : info.args) {
       if (a.back() == '?') continue;
       // A value every argument kind accepts.
-      args[a] = a == "side" ? "left" : a == "direction" ? "up" : a == "turn" ? "left" : a == "mode" ? "vio"
+      args[a] = a == "side" ? "left" : a == "direction" ? "up" : a == "turn" ? "left" : a == "mode" ? "vio" : a == "way" ? "stop"
               : a == "distance_m" ? "10" : "north gate";
     }
     const std::string en = render_message(msg(std::string(info.id), args), "en");
@@ -66,7 +66,7 @@ TEST(MessageTemplates, EveryTemplateHasBothLanguagesAndDistinctTexts) {
       EXPECT_NE(en, de) << info.id;
     }
   }
-  EXPECT_GE(ids.size(), 19u);
+  EXPECT_GE(ids.size(), 21u);
 }
 
 // Every message the cue generator can produce has words, in both languages.
@@ -121,6 +121,28 @@ TEST(MessageTemplates, EveryGeneratedMessageRenders) {
     add(g.on_guidance(c));
   }
   ev(SystemEventKind::kVoiceCommand, "stop guidance");
+  // Spoken directions of the audio-only preference.
+  CueGeneratorConfig audio;
+  audio.modality = CueModality::kAudio;
+  CueGenerator heard(audio);
+  for (const double heading_deg : {20.0, -20.0}) {
+    t += 1.0;
+    planning::GuidanceCommand v;
+    v.t = seconds_to_ns(t);
+    v.action = planning::GuidanceAction::kGo;
+    v.confidence = 1.0;
+    v.heading_rad = planning::deg_to_rad(heading_deg);
+    add(heard.on_guidance(v));
+  }
+  for (const auto r : {planning::RumbleState::kLeft, planning::RumbleState::kRight, planning::RumbleState::kBoth}) {
+    t += 1.0;
+    planning::GuidanceCommand o;
+    o.t = seconds_to_ns(t);
+    o.action = planning::GuidanceAction::kGo;
+    o.confidence = 1.0;
+    o.rumble = r;
+    add(heard.on_guidance(o));
+  }
   std::set<std::string> seen;
   for (const Cue& cue : cues) {
     if (!cue.message) continue;
@@ -131,7 +153,7 @@ TEST(MessageTemplates, EveryGeneratedMessageRenders) {
   }
   for (const char* id : {"initialized", "mode_changed", "network_lost", "network_restored", "link_lost",
                          "link_restored", "camera_fault", "route", "destination_set", "not_understood",
-                         "prepare_turn", "move_hand", "locating", "stop", "arrived", "guidance_stopped"}) {
+                         "prepare_turn", "move_hand", "locating", "stop", "arrived", "guidance_stopped", "bear", "obstacle"}) {
     EXPECT_TRUE(seen.count(id)) << id << " was never generated";
   }
 }

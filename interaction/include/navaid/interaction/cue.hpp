@@ -59,6 +59,9 @@ struct Cue {
   bool clear_haptics = false;
   /// Said again on request ("repeat", "where am i"): exempt from de-duplication.
   bool repeat = false;
+  /// Delivered on the device; false when the user chose to hear guidance only (eLabrador's
+  /// audio preference, CueModality::kAudio).
+  bool felt = true;
 };
 
 }  // namespace navaid::interaction

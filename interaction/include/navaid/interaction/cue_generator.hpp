@@ -11,6 +11,7 @@
 // threshold itself.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "navaid/core/config.hpp"
@@ -19,6 +20,16 @@
 #include "navaid/planning/guidance_command.hpp"
 
 namespace navaid::interaction {
+
+/// eLabrador's user preference: guidance felt, heard, or both.
+///   both:   directions felt; action, route and system messages spoken.
+///   haptic: directions felt; of the action messages only "Stop!" is spoken (route and system
+///           information has no haptic form and is still spoken).
+///   audio:  nothing felt; directions spoken instead: "Bear left." on a veer, "Prepare to turn
+///           left." on a turn, "Obstacle ahead, go left." on an obstacle; silence on course.
+enum class CueModality { kBoth, kHaptic, kAudio };
+std::string_view to_string(CueModality modality);
+std::optional<CueModality> cue_modality_from_string(std::string_view name);
 
 struct CueGeneratorConfig {
   double on_course_rad = 0.174532925199;  ///< 10 deg (eLabrador front vibrator; Augmented Cane dead-band)
@@ -35,11 +46,13 @@ struct CueGeneratorConfig {
   double ttl_haptic_s = 1.0;   ///< a direction cue older than this is stale
   double ttl_speech_s = 3.0;   ///< a spoken cue not started within this is dropped
   double ttl_system_s = 10.0;  ///< system messages wait longer
+  CueModality modality = CueModality::kBoth;
 };
 
 /// Keys interaction.cues.on_course_deg [1, 45], turn_deg (on_course, 90], hysteresis_deg [0, 10]
 /// (must stay below both thresholds' gap), min_confidence [0, 1], locating_repeat_s [1, 120],
-/// ttl_haptic_s, ttl_speech_s, ttl_system_s [0.1, 60]; ConfigError otherwise.
+/// ttl_haptic_s, ttl_speech_s, ttl_system_s [0.1, 60], modality (both | haptic | audio);
+/// ConfigError otherwise.
 CueGeneratorConfig read_cue_generator_config(const Config& config);
 
 enum class HeadingClass { kOnCourse, kVeer, kTurn };
@@ -63,6 +76,9 @@ class CueGenerator {
   Cue spoken(Timestamp t, CueKind kind, MessageCategory category, std::string id,
              std::map<std::string, std::string> args = {}) const;
   std::vector<Cue> locating(Timestamp t);
+  std::vector<Cue> guidance_cues(const planning::GuidanceCommand& command);
+  /// The user's modality applied to freshly made cues.
+  std::vector<Cue> for_modality(std::vector<Cue> cues) const;
 
   CueGeneratorConfig config_;
   std::optional<HeadingClass> heading_class_;
