@@ -1,5 +1,5 @@
 // The device link (docs/device-protocol.md): host encode + decode of a belt PATTERN (5 actuators,
-// 53-byte frame), the host and the controller's C decoder on the same stream and their ratio, the
+// 55-byte frame), the host and the controller's C decoder on the same stream and their ratio, the
 // latency from handing a pattern to DeviceLink to its first byte readable on the other end of a
 // pty, and the round trip to the firmware's ACK through the simulated controller. One thread
 // (plus the simulated controller's).
