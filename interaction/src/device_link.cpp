@@ -252,6 +252,7 @@ void DeviceLink::on_frame(const DecodedFrame& frame, Timestamp now) {
       // resync heartbeat was lost): resynchronise and send the frame again under a new number.
       synced_ = false;
       send_heartbeat(true);
+      if (!pending_) return;  // the write failed and the port is gone
       if (pending_->tries > config_.max_retransmits) {
         ++report_.failed;
         pending_.reset();
