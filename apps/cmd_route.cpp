@@ -1,5 +1,6 @@
 // navaid route: an offline walking route on an OpenStreetMap file (docs/routing.md): route.geojson,
-// route.png, narration.txt and route.json (length, crossings, steps, nodes expanded, time, reason).
+// route.png, narration.txt, guidance_timeline.csv (the narration for `navaid cues`) and
+// route.json (length, crossings, steps, nodes expanded, time, reason).
 // Exit 0 with a route, 4 when there is none (off the graph, unreachable, search limit), 2 on bad input.
 #include <fmt/format.h>
 
@@ -10,6 +11,7 @@
 
 #include "commands.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/route_timeline.hpp"
 #include "navaid/planning/foot_router.hpp"
 #include "navaid/planning/route_narration.hpp"
 #include "navaid/planning/route_png.hpp"
@@ -80,6 +82,7 @@ int run(const RouteArgs& a) {
   const planning::FootRouteConfig route_config = planning::foot_route_config(config);
   const planning::SubRouteConfig sub_config = planning::sub_route_config(config);
   const planning::NarrationConfig narration_config = planning::narration_config(config);
+  const interaction::RouteTimelineConfig timeline_config = interaction::read_route_timeline_config(config);
   config.reject_unknown_keys();
 
   const planning::FootGraph graph = planning::load_osm_foot_graph(a.osm);
@@ -138,6 +141,8 @@ int run(const RouteArgs& a) {
     std::ofstream text(a.out / "narration.txt");
     if (r.found()) {
       for (const planning::Instruction& i : narration) text << i.text << "\n";
+      interaction::write_guidance_timeline_csv(a.out / "guidance_timeline.csv",
+                                               interaction::route_timeline(narration, timeline_config));
     } else {
       text << "No route: " << r.reason << "\n";
     }
@@ -170,7 +175,7 @@ void add_route_command(CLI::App& app) {
   cmd->add_option("--osm", a->osm, "OpenStreetMap file")->required();
   cmd->add_option("--from", a->from, "Start LAT,LON (degrees)")->delimiter(',')->required();
   cmd->add_option("--to", a->to, "Destination LAT,LON (degrees)")->delimiter(',')->required();
-  cmd->add_option("--out", a->out, "Output folder (route.json, route.geojson, route.png, narration.txt)")->required();
+  cmd->add_option("--out", a->out, "Output folder (route.json, route.geojson, route.png, narration.txt, guidance_timeline.csv)")->required();
   cmd->add_option("--config", a->config_file, "YAML configuration (planning.route.* keys, docs/routing.md)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", a->overrides, "Override a key, e.g. --set planning.route.avoid_steps=true (repeatable)");

@@ -232,17 +232,26 @@ std::vector<Cue> CueGenerator::on_event(const SystemEvent& event) {
     case SystemEventKind::kLinkRestored: return on_change(link_up_, true, "link_lost", "link_restored");
     case SystemEventKind::kCameraFault: return system("camera_fault", {{"what", event.value}});
     case SystemEventKind::kRouteInstruction: {
-      // "<distance_m>;<turn>[;<road>]"
+      // "<distance_m>;<left|right|straight|cross|steps>[;<road>]"
       const std::size_t a = event.value.find(';');
       if (a == std::string::npos) {
-        throw Error(fmt::format("route instruction '{}': expected <distance_m>;<left|right|straight>[;<road>]",
-                                     event.value));
+        throw Error(fmt::format("route instruction '{}': expected <distance_m>;<left|right|straight|cross|steps>[;<road>]",
+                                event.value));
       }
       const std::size_t b = event.value.find(';', a + 1);
-      std::map<std::string, std::string> args{{"distance_m", event.value.substr(0, a)},
-                                              {"turn", event.value.substr(a + 1, b == std::string::npos ? b : b - a - 1)}};
-      if (b != std::string::npos) args["road"] = event.value.substr(b + 1);
-      Cue cue = spoken(t, CueKind::kSystem, MessageCategory::kRoute, "route", std::move(args));
+      const std::string what = event.value.substr(a + 1, b == std::string::npos ? b : b - a - 1);
+      std::map<std::string, std::string> args{{"distance_m", event.value.substr(0, a)}};
+      if (b != std::string::npos && b + 1 < event.value.size()) args["road"] = event.value.substr(b + 1);
+      std::string id = "route";
+      if (what == "cross") {
+        id = "route_crossing";
+      } else if (what == "steps") {
+        id = "route_steps";
+        args.erase("road");
+      } else {
+        args["turn"] = what;
+      }
+      Cue cue = spoken(t, CueKind::kSystem, MessageCategory::kRoute, std::move(id), std::move(args));
       cue.priority = default_priority(CueKind::kTurn);
       last_guidance_message_ = cue.message;
       last_route_message_ = cue.message;

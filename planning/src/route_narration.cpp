@@ -119,6 +119,7 @@ std::vector<Instruction> narrate_route(const Route& route, const FootGraph& grap
     const std::string& next = way_name(c.i);
     const std::string onto = !next.empty() && (c.i == 0 || next != way_name(c.i - 1)) ? " onto " + next : "";
     t.text = "turn " + how + side + onto;
+    if (!onto.empty()) t.road = next;
     events.push_back(t);
     k = j;
   }
@@ -128,6 +129,7 @@ std::vector<Instruction> narrate_route(const Route& route, const FootGraph& grap
     x.kind = InstructionKind::kCrossing;
     x.at_m = line.at[std::min(c.point, line.at.size() - 1)];
     x.text = crossing_phrase(c);
+    x.road = c.street;
     events.push_back(x);
   }
 

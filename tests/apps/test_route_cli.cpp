@@ -145,3 +145,40 @@ TEST(RouteCli, SimulatedRoute1MatchesItsTruth) { check_scenario("route1"); }
 TEST(RouteCli, SimulatedRoute2MatchesItsTruth) { check_scenario("route2"); }
 
 }  // namespace
+
+namespace {
+
+// A real route (the Berlin extract) heard through navaid cues: every turn and crossing of the
+// narration is announced 15 m ahead at 1 m/s, and arrival is said at the end.
+TEST(RouteCli, TheRealBerlinRouteIsSpokenThroughCues) {
+  const ScratchDir dir("route_cli_cues");
+  const std::string osm = (navaid::testing::shared_data_dir() / "osm/berlin-siegessaeule.osm.gz").string();
+  const auto run = navaid_cli(fmt_route(osm, 52.5145, 13.3480, 52.5145, 13.3522, (dir / "route").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string narration = read_text(dir / "route" / "narration.txt");
+  std::size_t announced = 0;
+  for (const char* what : {", turn ", ", cross ", ", steps "}) {
+    for (std::size_t p = narration.find(what); p != std::string::npos; p = narration.find(what, p + 1)) ++announced;
+  }
+  ASSERT_GT(announced, 3u) << narration;
+  const std::string timeline = read_text(dir / "route" / "guidance_timeline.csv");
+  std::size_t events = 0;
+  for (std::size_t p = timeline.find("route_instruction,"); p != std::string::npos;
+       p = timeline.find("route_instruction,", p + 1)) {
+    ++events;
+  }
+  EXPECT_EQ(events, announced) << timeline;
+  EXPECT_NE(timeline.find("route_instruction,15;left;Fasanerieallee"), std::string::npos) << timeline;
+  const auto cues = navaid_cli("cues --guidance '" + (dir / "route" / "guidance_timeline.csv").string() +
+                               "' --device belt --speech text --no-figure --out '" + (dir / "cues").string() + "'");
+  ASSERT_EQ(cues.status, 0) << cues.output;
+  const nlohmann::json s = nlohmann::json::parse(read_text(dir / "cues" / "summary.json"));
+  std::size_t route_messages = 0;
+  for (const auto& said : s["spoken"]) route_messages += said.get<std::string>().rfind("In 15 meters, ", 0) == 0;
+  EXPECT_EQ(route_messages, announced) << s["spoken"].dump();
+  EXPECT_EQ(s["spoken"].back(), "You have arrived.");
+  EXPECT_NE(s["spoken"].dump().find("In 15 meters, turn left onto Fasanerieallee."), std::string::npos);
+  EXPECT_NE(s["spoken"].dump().find("In 15 meters, a crossing: Stra\u00dfe des 17. Juni."), std::string::npos);
+}
+
+}  // namespace

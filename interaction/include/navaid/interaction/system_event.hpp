@@ -18,7 +18,7 @@ enum class SystemEventKind {
   kLinkRestored,    ///< the device link answers again
   kCameraFault,     ///< value: what failed
   kVoiceCommand,    ///< value: the recognised command ("repeat", "where am i", "go to <place>", ...)
-  kRouteInstruction,  ///< value: "<distance_m>;<left|right|straight>[;<road>]" (route narration)
+  kRouteInstruction,  ///< value: "<distance_m>;<left|right|straight|cross|steps>[;<road>]" (route narration)
 };
 std::string_view to_string(SystemEventKind kind);
 /// The names to_string gives ("initialized", "estimator_mode", ...); nullopt otherwise.

@@ -26,6 +26,9 @@ struct Instruction {
   InstructionKind kind = InstructionKind::kStart;
   double at_m = 0;      ///< along the route
   double turn_deg = 0;  ///< kTurn: heading change, positive = left
+  /// kTurn: the way turned onto when its name changes there; kCrossing: the street crossed
+  /// (empty when unnamed).
+  std::string road;
   std::string text;
 };
 
