@@ -1,7 +1,8 @@
 // navaid cues: a guidance timeline (CSV of GuidanceCommands and system events, one file or several
 // merged by time) through the cue generator, the scheduler and one device's adapter; writes the
 // cue timeline (cues.csv), a timeline figure (cues.png), everything spoken (speech.wav) and
-// summary.json.
+// summary.json. With --port the timeline is played out in real time to the vibration controller
+// over the device link.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/interaction/cue_session.hpp"
 #include "navaid/interaction/cue_timeline_csv.hpp"
+#include "navaid/interaction/device_link.hpp"
 #include "navaid/interaction/synthesized_speech.hpp"
 #include "navaid/interaction/wav_file.hpp"
 
@@ -32,6 +34,8 @@ struct CuesArgs {
   std::filesystem::path config_file;
   std::vector<std::string> overrides;
   bool no_figure = false;
+  std::string port;
+  double speed = 1.0;
 };
 
 /// Everything spoken from `t0` on, each message at its start and cut where it was interrupted.
@@ -72,6 +76,34 @@ std::vector<GuidanceTimelineEntry> merged_timeline(const std::vector<std::filesy
   return all;
 }
 
+/// An entry moved to `t` (when the playback reaches it late).
+GuidanceTimelineEntry at_time(GuidanceTimelineEntry entry, Timestamp t) {
+  std::visit([&](auto& e) { e.t = std::max(e.t, t); }, entry);
+  return entry;
+}
+
+/// Plays the timeline out on the wall clock (`speed` times faster) with every pattern sent over
+/// the device link: the link's own events (lost, restored) go back into the session, so they
+/// are spoken like any other system event. Returns when the timeline and its last cues are done.
+void play_to_device(CueSession& session, DeviceLink& link, const std::vector<GuidanceTimelineEntry>& timeline,
+                    double speed) {
+  const Timestamp t0 = timeline.empty() ? 0 : entry_time(timeline.front());
+  const Timestamp end = (timeline.empty() ? t0 : entry_time(timeline.back())) + seconds_to_ns(2.0);
+  const Timestamp wall0 = DeviceLink::steady_now();
+  const auto now = [&] {
+    return t0 + static_cast<Timestamp>(static_cast<double>(DeviceLink::steady_now() - wall0) * speed);
+  };
+  std::size_t next = 0;
+  Timestamp t = t0;
+  while (t <= end) {
+    t = std::max(t, now());
+    while (next < timeline.size() && entry_time(timeline[next]) <= t) session.feed(at_time(timeline[next++], t));
+    session.advance(t);
+    for (const SystemEvent& e : link.poll(t, 2)) session.feed(SystemEvent{std::max(e.t, t), e.kind, e.value});
+  }
+  link.close();
+}
+
 void run(const CuesArgs& a) {
   const std::optional<DeviceKind> kind = device_kind_from_string(a.device);
   if (!kind) throw UsageError(fmt::format("--device must be belt, hand, rumble or wheel, not '{}'", a.device));
@@ -86,14 +118,23 @@ void run(const CuesArgs& a) {
   const CuePolicyConfig policy = read_cue_policy_config(config);
   const std::unique_ptr<DeviceAdapter> device = make_device_adapter(*kind, config);
   const SpeechConfig speech_config = read_speech_config(config);
+  if (!(a.speed > 0.0)) throw UsageError(fmt::format("--speed must be positive, not {}", a.speed));
+  std::unique_ptr<DeviceLink> link;
+  if (!a.port.empty()) link = std::make_unique<DeviceLink>(a.port, *kind, config);
   config.reject_unknown_keys();
   std::unique_ptr<SynthesizedSpeech> speech;
   if (a.speech != "off") speech = std::make_unique<SynthesizedSpeech>(speech_config);
   const std::vector<GuidanceTimelineEntry> timeline = merged_timeline(a.guidance);
 
-  CueSession session(generator, policy, *device, speech.get());
-  for (const GuidanceTimelineEntry& entry : timeline) session.feed(entry);
-  session.drain();
+  CueSession::Sink sink;
+  if (link) sink = [&link](const CueEvent& e) { link->on_event(e); };
+  CueSession session(generator, policy, *device, speech.get(), sink);
+  if (link) {
+    play_to_device(session, *link, timeline, a.speed);
+  } else {
+    for (const GuidanceTimelineEntry& entry : timeline) session.feed(entry);
+    session.drain();
+  }
   const std::vector<CueEvent>& events = session.events();
 
   std::filesystem::create_directories(a.out);
@@ -129,6 +170,7 @@ void run(const CuesArgs& a) {
       {"spoken", spoken},
       {"speech_wav_s", speech_s},
   };
+  if (link) summary["link"] = link->report().to_json();
   std::ofstream(a.out / "summary.json") << summary.dump(2) << "\n";
   std::ofstream(a.out / "config.yaml") << config.dump();
   if (!a.no_figure) {
@@ -145,6 +187,13 @@ void run(const CuesArgs& a) {
                            counts["rate-limited"].get<int>(), counts["duplicate"].get<int>(),
                            counts["expired"].get<int>());
   for (const std::string& s : spoken) std::cout << "  said: " << s << "\n";
+  if (link) {
+    const LinkReport r = link->report();
+    std::cout << fmt::format("link {}: {} patterns and {} all-off sent, {} acknowledged, {} retransmitted, {} refused, "
+                             "{} given up; link lost {} times\n",
+                             a.port, r.patterns_sent, r.all_off_sent, r.acked, r.retransmits, r.naks, r.failed,
+                             r.link_lost_events);
+  }
   std::cout << fmt::format("wrote {}\n", a.out.string());
 }
 
@@ -163,6 +212,10 @@ void add_cues_command(CLI::App& app) {
   cmd->add_option("--config", a->config_file, "YAML configuration (interaction.* keys)")->check(CLI::ExistingFile);
   cmd->add_option("--set", a->overrides, "Override a key, e.g. --set interaction.belt.intensity=low (repeatable)");
   cmd->add_flag("--no-figure", a->no_figure, "Skip cues.png");
+  cmd->add_option("--port", a->port,
+                  "Serial port of the vibration controller (e.g. /dev/ttyUSB0, or navaid device-sim's link): "
+                  "plays the timeline out in real time and sends every pattern (docs/device-protocol.md)");
+  cmd->add_option("--speed", a->speed, "With --port: play this many times faster than real time (default 1)");
   cmd->callback([a] { run(*a); });
 }
 

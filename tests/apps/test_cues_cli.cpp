@@ -2,10 +2,13 @@
 // speech synthesized, as text only and off; stop pre-empting speech; replay determinism; errors.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "navaid/interaction/wav_file.hpp"
@@ -211,6 +214,36 @@ TEST_F(CuesCli, SameInputSameOutputs) {
     ASSERT_EQ(r.status, 0) << r.output;
   }
   EXPECT_EQ(navaid::testing::folder_contents(path("replay-a")), navaid::testing::folder_contents(path("replay-b")));
+}
+
+// --port: the timeline played out to navaid device-sim (the controller firmware behind a pty).
+// The controller stops after 2 s: the link is reported lost and the user hears it.
+TEST_F(CuesCli, PortPlaysToTheControllerAndALostLinkIsSpoken) {
+  const fs::path link = path("belt-link");
+  const std::string log = path("sim.log").string();
+  const std::string start = std::string(NAVAID_CLI_PATH) + " device-sim --device belt --link '" + link.string() +
+                            "' --duration 2 --status-s 0 >'" + log + "' 2>&1 &";
+  ASSERT_EQ(std::system(start.c_str()), 0);
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!fs::exists(link) && std::chrono::steady_clock::now() < limit) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(fs::exists(link)) << read_text(log);
+  // 12 s of timeline at 2x: 6 s of wall time, the controller gone after 2.
+  const auto r = cues("--device belt --speech text --no-figure --speed 2 --port '" + link.string() + "' --out '" +
+                      path("port").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(path("port") / "summary.json"));
+  const auto& l = s["link"];
+  EXPECT_GE(l["acked"].get<int>(), 1) << l.dump();
+  EXPECT_EQ(l["naks"].get<int>(), 0) << l.dump();
+  EXPECT_EQ(l["link_lost_events"].get<int>(), 1) << l.dump();
+  EXPECT_EQ(l["decoder"]["crc_errors"].get<int>(), 0) << l.dump();
+  EXPECT_NE(s["spoken"].dump().find("Vibration link lost."), std::string::npos) << s["spoken"].dump();
+  EXPECT_NE(r.output.find("link lost 1 times"), std::string::npos) << r.output;
+  const auto bad = cues("--device belt --port '" + path("no-such-tty").string() + "' --out '" + path("port-bad").string() + "'");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("no-such-tty: cannot open serial port"), std::string::npos) << bad.output;
 }
 
 TEST_F(CuesCli, Errors) {
