@@ -1,7 +1,8 @@
 // The device link (docs/device-protocol.md): host encode + decode of a belt PATTERN (5 actuators,
 // 55-byte frame), the host and the controller's C decoder on the same stream and their ratio, the
 // latency from handing a pattern to DeviceLink to its first byte readable on the other end of a
-// pty, and the round trip to the firmware's ACK through the simulated controller. One thread
+// pty, the same from a GuidanceCommand through the cue session, and the round trip to the
+// firmware's ACK through the simulated controller. One thread
 // (plus the simulated controller's).
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
@@ -15,6 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "navaid/core/config.hpp"
+#include "navaid/interaction/belt_adapter.hpp"
+#include "navaid/interaction/cue_session.hpp"
 #include "navaid/interaction/device_link.hpp"
 #include "navaid/interaction/device_protocol.hpp"
 #include "navaid_link.h"
@@ -158,6 +162,62 @@ void BM_PatternToFirstBytePty(benchmark::State& state) {
   state.counters["max_us"] = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
 }
 
+/// The whole host path: a GuidanceCommand into a CueSession (cue generator, scheduler, belt
+/// adapter) whose sink is the DeviceLink, to the first byte readable on the pty master. Each
+/// iteration is a fresh session, so the command's pattern goes out at once (a turn: the first
+/// pattern; a stop: pre-empts). The target: p99 <= 1 ms.
+void BM_GuidanceCommandToFirstBytePty(benchmark::State& state, bool stop) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) {
+    state.SkipWithError("no pty");
+    return;
+  }
+  char name[128] = {};
+  ::ptsname_r(master, name, sizeof name);
+  DeviceLink link(name, DeviceKind::kBelt, LinkConfig{});
+  const BeltAdapter belt;
+  const Config defaults = Config::parse("{}", "<defaults>", {});
+  const CueGeneratorConfig generator = read_cue_generator_config(defaults);
+  const CuePolicyConfig policy = read_cue_policy_config(defaults);
+  std::uint8_t buf[4096];
+  auto drain = [&] {
+    while (::read(master, buf, sizeof buf) > 0) {
+    }
+  };
+  std::vector<double> us;
+  int k = 0;
+  for (auto _ : state) {
+    CueSession session(generator, policy, belt, nullptr, [&link](const CueEvent& e) { link.on_event(e); });
+    planning::GuidanceCommand c;
+    c.t = seconds_to_ns(1.0);
+    c.confidence = 1.0;
+    if (stop) {
+      c.action = planning::GuidanceAction::kStop;
+      c.reason = planning::GuidanceReason::kObstacleAhead;
+    } else {
+      c.action = planning::GuidanceAction::kGo;
+      c.reason = planning::GuidanceReason::kPathFound;
+      c.heading_rad = (k++ % 2 == 0 ? 0.8 : -0.8);
+    }
+    drain();
+    const auto t0 = std::chrono::steady_clock::now();
+    session.feed(c);
+    pollfd pf{master, POLLIN, 0};
+    if (::poll(&pf, 1, 1000) != 1) {
+      state.SkipWithError("no byte within 1 s");
+      break;
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+  }
+  drain();
+  link.close();
+  ::close(master);
+  state.counters["p50_us"] = percentile(us, 0.50);
+  state.counters["p99_us"] = percentile(us, 0.99);
+  state.counters["max_us"] = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
+}
+
 /// Pattern handed to DeviceLink -> the simulated controller's ACK back, over a pty, as the
 /// LinkReport measures it.
 void BM_PatternRoundTripFirmwarePty(benchmark::State& state) {
@@ -189,4 +249,6 @@ BENCHMARK(BM_HostDecodeStream);
 BENCHMARK(BM_FirmwareDecodeStream);
 BENCHMARK(BM_DecoderRatioHostOverFirmware);
 BENCHMARK(BM_PatternToFirstBytePty)->Iterations(5000)->UseRealTime();
+BENCHMARK_CAPTURE(BM_GuidanceCommandToFirstBytePty, turn, false)->Iterations(5000)->UseRealTime();
+BENCHMARK_CAPTURE(BM_GuidanceCommandToFirstBytePty, stop, true)->Iterations(5000)->UseRealTime();
 BENCHMARK(BM_PatternRoundTripFirmwarePty)->Iterations(2000)->UseRealTime();
