@@ -123,43 +123,67 @@ void BM_DecoderRatioHostOverFirmware(benchmark::State& state) {
   state.counters["host_over_firmware"] = fw_s / host_s;
 }
 
-/// Latency from DeviceLink::send() to the first byte readable on the pty master. Nobody answers:
-/// each new pattern supersedes the last, which does not change what is measured.
-void BM_PatternToFirstBytePty(benchmark::State& state) {
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
-  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) {
-    state.SkipWithError("no pty");
-    return;
+/// The master end of a new pty: the benchmarks' DeviceLink opens name(), the benchmark reads here.
+class PtyMaster {
+ public:
+  PtyMaster() : fd_(::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK)) {
+    if (fd_ < 0 || ::grantpt(fd_) != 0 || ::unlockpt(fd_) != 0 || ::ptsname_r(fd_, name_, sizeof name_) != 0) name_[0] = 0;
   }
-  char name[128] = {};
-  ::ptsname_r(master, name, sizeof name);
-  DeviceLink link(name, DeviceKind::kBelt, LinkConfig{});
-  std::uint8_t buf[4096];
-  auto drain = [&] {
-    while (::read(master, buf, sizeof buf) > 0) {
-    }
-  };
-  std::vector<double> us;
-  int k = 0;
-  for (auto _ : state) {
-    drain();
-    const ActuatorPattern p = belt_pattern(k++);
-    const auto t0 = std::chrono::steady_clock::now();
-    link.send(p);
-    pollfd pf{master, POLLIN, 0};
-    if (::poll(&pf, 1, 1000) != 1) {
-      state.SkipWithError("no byte within 1 s");
-      break;
-    }
-    const auto t1 = std::chrono::steady_clock::now();
-    us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+  ~PtyMaster() {
+    if (fd_ >= 0) ::close(fd_);
   }
-  drain();
-  link.close();
-  ::close(master);
+  PtyMaster(const PtyMaster&) = delete;
+  PtyMaster& operator=(const PtyMaster&) = delete;
+  bool ok() const { return name_[0] != 0; }
+  const char* name() const { return name_; }
+  void drain() {
+    while (::read(fd_, buf_, sizeof buf_) > 0) {
+    }
+  }
+  /// Microseconds from `t0` to the first byte readable, or a negative value after 1 s.
+  double first_byte_us(std::chrono::steady_clock::time_point t0) const {
+    pollfd pf{fd_, POLLIN, 0};
+    if (::poll(&pf, 1, 1000) != 1) return -1.0;
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+ private:
+  int fd_;
+  char name_[128] = {};
+  std::uint8_t buf_[4096];
+};
+
+void latency_counters(benchmark::State& state, const std::vector<double>& us) {
   state.counters["p50_us"] = percentile(us, 0.50);
   state.counters["p99_us"] = percentile(us, 0.99);
   state.counters["max_us"] = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
+}
+
+/// Latency from DeviceLink::send() to the first byte readable on the pty master. Nobody answers:
+/// each new pattern supersedes the last, which does not change what is measured.
+void BM_PatternToFirstBytePty(benchmark::State& state) {
+  PtyMaster pty;
+  if (!pty.ok()) {
+    state.SkipWithError("no pty");
+    return;
+  }
+  DeviceLink link(pty.name(), DeviceKind::kBelt, LinkConfig{});
+  std::vector<double> us;
+  int k = 0;
+  for (auto _ : state) {
+    pty.drain();
+    const ActuatorPattern p = belt_pattern(k++);
+    const auto t0 = std::chrono::steady_clock::now();
+    link.send(p);
+    us.push_back(pty.first_byte_us(t0));
+    if (us.back() < 0) {
+      state.SkipWithError("no byte within 1 s");
+      break;
+    }
+  }
+  pty.drain();
+  link.close();
+  latency_counters(state, us);
 }
 
 /// The whole host path: a GuidanceCommand into a CueSession (cue generator, scheduler, belt
@@ -167,23 +191,16 @@ void BM_PatternToFirstBytePty(benchmark::State& state) {
 /// iteration is a fresh session, so the command's pattern goes out at once (a turn: the first
 /// pattern; a stop: pre-empts). The target: p99 <= 1 ms.
 void BM_GuidanceCommandToFirstBytePty(benchmark::State& state, bool stop) {
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
-  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) {
+  PtyMaster pty;
+  if (!pty.ok()) {
     state.SkipWithError("no pty");
     return;
   }
-  char name[128] = {};
-  ::ptsname_r(master, name, sizeof name);
-  DeviceLink link(name, DeviceKind::kBelt, LinkConfig{});
+  DeviceLink link(pty.name(), DeviceKind::kBelt, LinkConfig{});
   const BeltAdapter belt;
   const Config defaults = Config::parse("{}", "<defaults>", {});
   const CueGeneratorConfig generator = read_cue_generator_config(defaults);
   const CuePolicyConfig policy = read_cue_policy_config(defaults);
-  std::uint8_t buf[4096];
-  auto drain = [&] {
-    while (::read(master, buf, sizeof buf) > 0) {
-    }
-  };
   std::vector<double> us;
   int k = 0;
   for (auto _ : state) {
@@ -199,23 +216,18 @@ void BM_GuidanceCommandToFirstBytePty(benchmark::State& state, bool stop) {
       c.reason = planning::GuidanceReason::kPathFound;
       c.heading_rad = (k++ % 2 == 0 ? 0.8 : -0.8);
     }
-    drain();
+    pty.drain();
     const auto t0 = std::chrono::steady_clock::now();
     session.feed(c);
-    pollfd pf{master, POLLIN, 0};
-    if (::poll(&pf, 1, 1000) != 1) {
+    us.push_back(pty.first_byte_us(t0));
+    if (us.back() < 0) {
       state.SkipWithError("no byte within 1 s");
       break;
     }
-    const auto t1 = std::chrono::steady_clock::now();
-    us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
   }
-  drain();
+  pty.drain();
   link.close();
-  ::close(master);
-  state.counters["p50_us"] = percentile(us, 0.50);
-  state.counters["p99_us"] = percentile(us, 0.99);
-  state.counters["max_us"] = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
+  latency_counters(state, us);
 }
 
 /// Pattern handed to DeviceLink -> the simulated controller's ACK back, over a pty, as the

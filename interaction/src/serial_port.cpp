@@ -98,9 +98,7 @@ void SerialPort::close() {
   fd_ = -1;
 }
 
-std::size_t SerialPort::read(std::uint8_t* out, std::size_t cap, int timeout_ms) {
-  if (fd_ < 0) throw IoError(path_, "serial port is closed");
-  pollfd p{fd_, POLLIN, 0};
+int SerialPort::wait_for(pollfd& p, int timeout_ms) const {
   int r = 0;
   do {
     r = ::poll(&p, 1, timeout_ms);
@@ -109,7 +107,13 @@ std::size_t SerialPort::read(std::uint8_t* out, std::size_t cap, int timeout_ms)
     const int err = errno;
     throw IoError(path_, "waiting for the serial port failed: " + errno_text(err));
   }
-  if (r == 0) return 0;
+  return r;
+}
+
+std::size_t SerialPort::read(std::uint8_t* out, std::size_t cap, int timeout_ms) {
+  if (fd_ < 0) throw IoError(path_, "serial port is closed");
+  pollfd p{fd_, POLLIN, 0};
+  if (wait_for(p, timeout_ms) == 0) return 0;
   if ((p.revents & POLLNVAL) != 0) throw IoError(path_, "serial port descriptor is no longer valid");
   // Read even when POLLHUP is set too: the bytes that came before the hang-up still count.
   const ssize_t n = ::read(fd_, out, cap);
@@ -146,14 +150,7 @@ std::size_t SerialPort::write(const std::uint8_t* data, std::size_t n, int timeo
     if (waited) break;
     waited = true;
     pollfd p{fd_, POLLOUT, 0};
-    int r = 0;
-    do {
-      r = ::poll(&p, 1, timeout_ms);
-    } while (r < 0 && errno == EINTR);
-    if (r < 0) {
-      const int err = errno;
-      throw IoError(path_, "waiting for the serial port failed: " + errno_text(err));
-    }
+    const int r = wait_for(p, timeout_ms);
     if ((p.revents & (POLLERR | POLLNVAL)) != 0) throw IoError(path_, "serial device went away");
     if (r == 0) break;
   }

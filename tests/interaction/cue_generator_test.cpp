@@ -265,32 +265,22 @@ CueGenerator with_modality(CueModality m) {
   return CueGenerator(c);
 }
 
-planning::GuidanceCommand heading_command(double t_s, double heading_deg) {
-  planning::GuidanceCommand c;
-  c.t = seconds_to_ns(t_s);
-  c.action = planning::GuidanceAction::kGo;
-  c.reason = planning::GuidanceReason::kPathFound;
-  c.confidence = 1.0;
-  c.heading_rad = planning::deg_to_rad(heading_deg);
-  return c;
-}
-
 TEST(CueGeneratorModality, AudioSpeaksDirectionsAndFeelsNothing) {
   CueGenerator g = with_modality(CueModality::kAudio);
-  const auto on_course = g.on_guidance(heading_command(0.0, 2.0));
+  const auto on_course = g.on_guidance(go(0.0, 2.0));
   ASSERT_EQ(on_course.size(), 1u);
   EXPECT_FALSE(on_course[0].felt);
   EXPECT_FALSE(on_course[0].message) << "silence while on course";
-  const auto veer = g.on_guidance(heading_command(0.1, -20.0));
+  const auto veer = g.on_guidance(go(0.1, -20.0));
   ASSERT_EQ(veer.size(), 1u);
   EXPECT_FALSE(veer[0].felt);
   ASSERT_TRUE(veer[0].message);
   EXPECT_EQ(veer[0].message->id, "bear");
   EXPECT_EQ(veer[0].message->args.at("side"), "right");
-  const auto turn = g.on_guidance(heading_command(0.2, 60.0));
+  const auto turn = g.on_guidance(go(0.2, 60.0));
   ASSERT_TRUE(turn[0].message);
   EXPECT_EQ(turn[0].message->id, "prepare_turn");
-  planning::GuidanceCommand obstacle = heading_command(0.3, 0.0);
+  planning::GuidanceCommand obstacle = go(0.3, 0.0);
   obstacle.heading_rad.reset();
   obstacle.rumble = planning::RumbleState::kLeft;
   const auto o = g.on_guidance(obstacle);
@@ -303,17 +293,17 @@ TEST(CueGeneratorModality, AudioSpeaksDirectionsAndFeelsNothing) {
 
 TEST(CueGeneratorModality, HapticKeepsStopAndSystemMessagesOnly) {
   CueGenerator g = with_modality(CueModality::kHaptic);
-  const auto turn = g.on_guidance(heading_command(0.0, 60.0));
+  const auto turn = g.on_guidance(go(0.0, 60.0));
   ASSERT_EQ(turn.size(), 1u);
   EXPECT_TRUE(turn[0].felt);
   EXPECT_FALSE(turn[0].message) << "no 'prepare to turn' in haptic mode";
-  planning::GuidanceCommand stop = heading_command(1.0, 0.0);
+  planning::GuidanceCommand stop = go(1.0, 0.0);
   stop.action = planning::GuidanceAction::kStop;
   stop.heading_rad.reset();
   const auto s = g.on_guidance(stop);
   ASSERT_TRUE(s[0].message);
   EXPECT_EQ(s[0].message->id, "stop");
-  planning::GuidanceCommand unsure = heading_command(2.0, 0.0);
+  planning::GuidanceCommand unsure = go(2.0, 0.0);
   unsure.confidence = 0.0;
   const auto l = g.on_guidance(unsure);
   ASSERT_EQ(l.size(), 1u);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+struct pollfd;
+
 namespace navaid::interaction {
 
 /// The baud rates SerialPort accepts (termios has no arbitrary rates).
@@ -38,6 +40,9 @@ class SerialPort {
   int fd() const { return fd_; }
 
  private:
+  /// poll() on the port, retried after EINTR; IoError on failure. 0 on timeout.
+  int wait_for(struct pollfd& p, int timeout_ms) const;
+
   std::string path_;
   int baud_ = 0;
   int fd_ = -1;
