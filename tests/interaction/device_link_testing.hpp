@@ -34,6 +34,11 @@ class HostCollector {
     dec_.flush([this](const DecodedFrame& f) { keep(f); });
   }
   FrameDecoder& decoder() { return dec_; }
+  /// Frame i as the parsers take it (a new, well-formed frame; the payload is kept here).
+  DecodedFrame decoded(std::size_t i) const {
+    return DecodedFrame{frames[i].type, frames[i].seq, SequenceStatus::kNew, true, frames[i].payload.data(),
+                        frames[i].payload.size()};
+  }
   std::vector<Delivered> frames;
   std::vector<bool> well_formed;
 

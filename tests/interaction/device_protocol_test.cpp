@@ -108,10 +108,7 @@ TEST(DeviceProtocol, EveryTypeRoundTripsThroughTheHostDecoder) {
   n = encode_heartbeat_reply(5, r, b.data());
   host.feed(b.data(), n);
   ASSERT_EQ(host.frames.size(), 5u);
-  auto frame = [&](std::size_t i) {
-    return DecodedFrame{host.frames[i].type, host.frames[i].seq, SequenceStatus::kNew, true,
-                        host.frames[i].payload.data(), host.frames[i].payload.size()};
-  };
+  const auto frame = [&](std::size_t i) { return host.decoded(i); };
   EXPECT_EQ(host.frames[0].type, 0x02);
   EXPECT_TRUE(host.frames[0].payload.empty());
   EXPECT_EQ(host.frames[1].payload, Bytes{protocol::kHeartbeatResync});
@@ -161,10 +158,7 @@ TEST(DeviceProtocol, FirmwareRepliesDecodeOnTheHost) {
   HostCollector host(FrameDirection::kDeviceToHost);
   host.feed(out, n);
   ASSERT_EQ(host.frames.size(), 3u);
-  auto frame = [&](std::size_t i) {
-    return DecodedFrame{host.frames[i].type, host.frames[i].seq, SequenceStatus::kNew, true,
-                        host.frames[i].payload.data(), host.frames[i].payload.size()};
-  };
+  const auto frame = [&](std::size_t i) { return host.decoded(i); };
   const auto reply = parse_heartbeat_reply(frame(0));
   ASSERT_TRUE(reply);
   EXPECT_EQ(reply->seq, 10);
