@@ -5,7 +5,8 @@
 # the image walk (built during the estimator's run, and again from ground truth), a small reproduction
 # of the RGBD-VIO paper's Table I (navaid reproduce rgbd-vio-table1 --quick), the Smart Cane paper's
 # Table I (A* vs the walking-path generator) with plans on the real Willow office map, narrated
-# offline routes on real OpenStreetMap extracts and the route2 scenario's OSM export, and a summary and
+# offline routes on real OpenStreetMap extracts (the Berlin one spoken and felt through the cue
+# scheduler: cues.csv, cues.png, speech.wav) and the route2 scenario's OSM export, and a summary and
 # plot of real recorded data from ../shared/data (a GNSS receiver capture and the EuRoC V1_02
 # ground truth).
 # Usage: bash scripts/main-job.sh [OUT_DIR]   (default out/main-job)
@@ -61,6 +62,9 @@ $NAVAID route --osm "$DATA/osm/berlin-siegessaeule.osm.gz" --from 52.5145,13.348
   --out "$OUT/route-berlin"
 $NAVAID route --osm "$DATA/osm/paris_bss.osm.pbf" --from 48.8620,2.3600 --to 48.8660,2.3700 --out "$OUT/route-paris"
 $NAVAID scenario-map --scenario route2 --osm --out "$OUT/route2-osm"
+
+echo "== The Berlin route heard and felt: its narration through the cue scheduler to the eLabrador belt, spoken by espeak-ng"
+$NAVAID cues --guidance "$OUT/route-berlin/guidance_timeline.csv" --device belt --out "$OUT/cues-berlin"
 
 echo "== GNSS capture: summary, conversion to a navaid recording, ENU track"
 $NAVAID info "$DATA/gpsd-nmea/haicom-305N.log" | tee "$OUT/gnss-capture-info.txt"
