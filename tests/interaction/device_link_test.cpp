@@ -5,13 +5,18 @@
 #include "navaid/interaction/device_link.hpp"
 
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <poll.h>
+#include <termios.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <thread>
 
 #include "device_link_testing.hpp"
@@ -549,6 +554,132 @@ TEST(DeviceLinkFirmware, OverASocatNullModemCable) {
   EXPECT_EQ(sim.snapshot().outputs[0], -250);
   EXPECT_EQ(link.report().naks, 0u);
   EXPECT_TRUE(events.empty());
+}
+
+/// A noisy serial line: copies bytes both ways between two tty fds, flipping one random bit of a
+/// byte with probability `flip` and dropping a byte with probability `drop` (fixed seeds).
+class NoisyLine {
+ public:
+  NoisyLine(int a, int b, double flip, double drop) : a_(a), b_(b), flip_(flip), drop_(drop) {
+    thread_ = std::thread([this] { run(); });
+  }
+  ~NoisyLine() {
+    stop_ = true;
+    thread_.join();
+  }
+  std::uint64_t flipped() const { return flipped_; }
+  std::uint64_t dropped() const { return dropped_; }
+
+ private:
+  void run() {
+    std::mt19937 rng_ab(11), rng_ba(12);
+    std::uint8_t buf[512];
+    while (!stop_) {
+      pollfd p[2] = {{a_, POLLIN, 0}, {b_, POLLIN, 0}};
+      if (::poll(p, 2, 5) <= 0) continue;
+      for (int side = 0; side < 2; ++side) {
+        if ((p[side].revents & POLLIN) == 0) continue;
+        const ssize_t n = ::read(side == 0 ? a_ : b_, buf, sizeof buf);
+        if (n <= 0) continue;
+        std::mt19937& rng = side == 0 ? rng_ab : rng_ba;
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        std::vector<std::uint8_t> out;
+        for (ssize_t i = 0; i < n; ++i) {
+          if (u(rng) < drop_) {
+            ++dropped_;
+            continue;
+          }
+          std::uint8_t byte = buf[i];
+          if (u(rng) < flip_) {
+            byte ^= static_cast<std::uint8_t>(1u << (rng() % 8));
+            ++flipped_;
+          }
+          out.push_back(byte);
+        }
+        if (!out.empty() && ::write(side == 0 ? b_ : a_, out.data(), out.size()) < 0) continue;
+      }
+    }
+  }
+  int a_, b_;
+  double flip_, drop_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint64_t> flipped_{0}, dropped_{0};
+  std::thread thread_;
+};
+
+// The host and the firmware over a socat line with bit errors and drops between them: host <->
+// socat pty pair <-> noisy line <-> the simulated controller's pty. Every corrupted frame is
+// caught by the CRC and retransmitted; none is applied wrongly.
+TEST(DeviceLinkFirmware, OverASocatLineWithBitErrorsAndDrops) {
+  if (std::system("command -v socat >/dev/null 2>&1") != 0) GTEST_SKIP() << "socat is not installed";
+  ScratchDir dir("device_link_noisy");
+  const std::string a = (dir / "a").string();
+  const std::string b = (dir / "b").string();
+  const std::string log = (dir / "socat.log").string();
+  const std::string cmd = "socat -d -d pty,raw,echo=0,link=" + a + " pty,raw,echo=0,link=" + b + " 2>" + log +
+                          " & echo $! > " + (dir / "socat.pid").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!(std::filesystem::exists(a) && std::filesystem::exists(b)) && std::chrono::steady_clock::now() < limit) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const std::string pid = navaid::testing::read_text(dir / "socat.pid");
+  struct Kill {
+    std::string pid;
+    ~Kill() { std::system(("kill " + pid + " 2>/dev/null").c_str()); }
+  } kill{pid.substr(0, pid.find('\n'))};
+  ASSERT_TRUE(std::filesystem::exists(a) && std::filesystem::exists(b)) << navaid::testing::read_text(log);
+  firmware_sim::SimulatedController sim(NAVAID_LINK_DEVICE_BELT, 5);
+  const int line_end = ::open(b.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  const int sim_end = ::open(sim.slave_path().c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  ASSERT_GE(line_end, 0);
+  ASSERT_GE(sim_end, 0);
+  for (const int fd : {line_end, sim_end}) {
+    termios t{};
+    ASSERT_EQ(::tcgetattr(fd, &t), 0);
+    ::cfmakeraw(&t);
+    ASSERT_EQ(::tcsetattr(fd, TCSANOW, &t), 0);
+  }
+  constexpr int kPatterns = 100;
+  std::uint64_t flipped = 0, dropped = 0;
+  LinkReport r;
+  firmware_sim::ControllerSnapshot s;
+  std::int16_t last_acked_level = -1;
+  {
+    NoisyLine line(line_end, sim_end, 0.003, 0.003);
+    DeviceLink link(a, DeviceKind::kBelt, LinkConfig{});
+    std::vector<SystemEvent> events;
+    for (int i = 0; i < kPatterns; ++i) {
+      const auto level = static_cast<std::int16_t>(10 * (i + 1));
+      const std::uint64_t acked_before = link.report().acked;
+      link.send(testing::belt_pattern(static_cast<std::uint8_t>(i % 5), level, 1100));
+      ASSERT_TRUE(poll_until(link, events, [&] { return !link.awaiting_ack(); })) << i;
+      if (link.report().acked > acked_before) last_acked_level = level;
+    }
+    r = link.report();
+    s = sim.snapshot();  // before close() switches everything off
+    link.close();
+    flipped = line.flipped();
+    dropped = line.dropped();
+  }
+  ::close(line_end);
+  ::close(sim_end);
+  std::cout << "noisy line: " << flipped << " bits flipped, " << dropped << " bytes dropped; " << r.acked
+            << " acked, " << r.retransmits << " retransmits, " << r.failed << " given up\n";
+  EXPECT_GT(flipped + dropped, 10u) << "the line must really be noisy";
+  EXPECT_EQ(r.acked + r.failed + r.naks, static_cast<std::uint64_t>(kPatterns));
+  EXPECT_LE(r.failed, 4u);
+  EXPECT_EQ(r.naks, 0u) << "a corrupted frame must never pass the CRC and be refused";
+  EXPECT_GT(r.retransmits, 0u);
+  EXPECT_GT(s.decoder.crc_errors + r.decoder.crc_errors + s.decoder.truncated + r.decoder.truncated, 0u);
+  // What the controller applied last is a pattern the host sent (never a corrupted level).
+  ASSERT_GT(last_acked_level, 0);
+  bool seen = false;
+  for (std::int16_t o : s.outputs) {
+    EXPECT_TRUE(o == 0 || (o > 0 && o <= 10 * kPatterns && o % 10 == 0)) << o;
+    seen = seen || o == last_acked_level;
+  }
+  EXPECT_TRUE(seen) << "the last acknowledged pattern is in force";
 }
 
 }  // namespace
