@@ -21,6 +21,7 @@ void add_rumble_command(CLI::App& app);
 void add_hand_guide_command(CLI::App& app);
 void add_route_command(CLI::App& app);
 void add_cues_command(CLI::App& app);
+void add_listen_command(CLI::App& app);
 void add_device_sim_command(CLI::App& app);
 
 }  // namespace navaid::cli

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   navaid::cli::add_hand_guide_command(app);
   navaid::cli::add_route_command(app);
   navaid::cli::add_cues_command(app);
+  navaid::cli::add_listen_command(app);
   navaid::cli::add_device_sim_command(app);
   app.parse_complete_callback([&] {
     spdlog::set_level(verbosity >= 2 ? spdlog::level::debug

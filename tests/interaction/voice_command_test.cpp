@@ -1,0 +1,152 @@
+// Voice commands with pocketsphinx on speech synthesized by espeak-ng: every command recognised
+// in the voices it works for, other speech rejected by the word-loop likelihood ratio, silence and
+// noise give nothing, bad places and a missing model are clear errors.
+#include "navaid/interaction/voice_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/interaction/speech_synthesizer.hpp"
+#include "navaid/interaction/wav_file.hpp"
+
+namespace navaid::interaction {
+namespace {
+
+const std::vector<std::string> kPlaces{"kitchen", "main entrance", "bus stop", "library"};
+const std::vector<std::string> kCommands{"go to kitchen", "go to main entrance", "go to bus stop", "go to library",
+                                         "repeat", "where am i", "stop guidance"};
+const std::vector<std::string> kOtherSpeech{"the weather is nice today", "what time is it", "call my sister",
+                                            "turn on the light", "hello", "thank you very much"};
+
+/// `text` in an espeak-ng voice with 0.3 s of silence either side, as a microphone would hear it.
+AudioBuffer spoken(const std::string& text, const std::string& voice) {
+  SpeechConfig c;
+  c.voice = voice;
+  const AudioBuffer a = SpeechSynthesizer(c).synthesize_uncached(text);
+  AudioBuffer out;
+  out.sample_rate_hz = a.sample_rate_hz;
+  const auto pad = static_cast<std::size_t>(0.3 * a.sample_rate_hz);
+  out.samples.assign(pad, 0);
+  out.samples.insert(out.samples.end(), a.samples.begin(), a.samples.end());
+  out.samples.insert(out.samples.end(), pad, 0);
+  return out;
+}
+
+class VoiceCommands : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { recognizer_ = std::make_unique<VoiceCommandRecognizer>(kPlaces); }
+  static void TearDownTestSuite() { recognizer_.reset(); }
+  static VoiceCommandRecognizer& rec() { return *recognizer_; }
+  static inline std::unique_ptr<VoiceCommandRecognizer> recognizer_;
+};
+
+TEST_F(VoiceCommands, TheGrammarHoldsTheCommandsAndThePlaces) {
+  EXPECT_NE(rec().grammar().find("go to <place> | repeat | where am i | stop guidance"), std::string::npos);
+  EXPECT_NE(rec().grammar().find("kitchen | main entrance | bus stop | library"), std::string::npos);
+  EXPECT_EQ(rec().places(), kPlaces);
+  EXPECT_DOUBLE_EQ(rec().config().min_score, 0.1);
+}
+
+// The two female English voices are recognised on every command (pocketsphinx's en-us model fits
+// them best; the measured rates of all voices are in docs/interaction-voice.md).
+TEST_F(VoiceCommands, EveryCommandInTheFemaleVoices) {
+  for (const char* voice : {"en+f3", "en+f5"}) {
+    for (const std::string& command : kCommands) {
+      const VoiceCommand r = rec().recognize(spoken(command, voice));
+      EXPECT_EQ(describe(r), command) << voice << ": heard '" << r.heard << "', score " << r.score;
+      EXPECT_GE(r.score, rec().config().min_score) << voice << " " << command;
+    }
+  }
+  const VoiceCommand go = rec().recognize(spoken("go to main entrance", "en+f3"));
+  EXPECT_EQ(go.kind, VoiceCommand::Kind::kGoTo);
+  EXPECT_EQ(go.place, "main entrance");
+  EXPECT_EQ(to_string(go.kind), "go_to");
+}
+
+TEST_F(VoiceCommands, OtherSpeechIsMostlyNotUnderstood) {
+  int accepted = 0, forced = 0, total = 0;
+  for (const char* voice : {"en", "en-us", "en+m3", "en-gb-x-rp", "en+f3", "en+f5"}) {
+    for (const std::string& sentence : kOtherSpeech) {
+      const VoiceCommand r = rec().recognize(spoken(sentence, voice));
+      ++total;
+      if (!r.heard.empty()) ++forced;  // the grammar alone would have taken it for a command
+      if (r.kind != VoiceCommand::Kind::kNotUnderstood) {
+        ++accepted;
+        std::cout << "false accept: " << voice << " '" << sentence << "' as '" << r.heard << "', score " << r.score << "\n";
+      }
+    }
+  }
+  std::cout << "other speech: grammar forced " << forced << " of " << total << ", accepted after the ratio " << accepted
+            << "\n";
+  // Measured on 36 sentences: the grammar forces 15 onto a command, the ratio lets 8 through
+  // (docs/interaction-voice.md).
+  EXPECT_LT(accepted, forced);
+  EXPECT_LE(accepted, 10);
+}
+
+TEST_F(VoiceCommands, SilenceAndNoiseAreNothing) {
+  AudioBuffer silence;
+  silence.sample_rate_hz = 16000;
+  silence.samples.assign(32000, 0);
+  VoiceCommand r = rec().recognize(silence);
+  EXPECT_EQ(r.kind, VoiceCommand::Kind::kNotUnderstood);
+  EXPECT_EQ(describe(r), "not understood");
+  AudioBuffer noise = silence;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0.0, 2000.0);
+  for (auto& s : noise.samples) s = static_cast<std::int16_t>(std::clamp(n(rng), -32768.0, 32767.0));
+  r = rec().recognize(noise);
+  EXPECT_EQ(r.kind, VoiceCommand::Kind::kNotUnderstood) << "heard '" << r.heard << "' score " << r.score;
+  AudioBuffer empty;
+  empty.sample_rate_hz = 16000;
+  EXPECT_EQ(rec().recognize(empty).kind, VoiceCommand::Kind::kNotUnderstood);
+}
+
+TEST_F(VoiceCommands, SixteenKilohertzInputGivesTheSameCommand) {
+  const AudioBuffer a = spoken("stop guidance", "en+f5");
+  const VoiceCommand at_22k = rec().recognize(a);
+  const VoiceCommand at_16k = rec().recognize(resample(a, 16000));
+  EXPECT_EQ(describe(at_22k), "stop guidance");
+  EXPECT_EQ(describe(at_16k), "stop guidance");
+}
+
+TEST(VoiceCommandErrors, BadPlacesAndAMissingModelNameWhatIsWrong) {
+  const auto error_of = [](std::vector<std::string> places, VoiceRecognizerConfig config = {}) {
+    try {
+      VoiceCommandRecognizer r(std::move(places), config);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of({"kitchen", "  "}).find("blank"), std::string::npos);
+  EXPECT_NE(error_of({"room 101"}).find("'room 101' has the character '1'"), std::string::npos);
+  EXPECT_NE(error_of({"xqzzyv hall"}).find("the word 'xqzzyv' is not in the pronunciation dictionary"), std::string::npos);
+  EXPECT_NE(error_of({"kitchen", "Kitchen"}).find("given twice"), std::string::npos);
+  VoiceRecognizerConfig missing;
+  missing.model_dir = "/nonexistent/pocketsphinx-model";
+  EXPECT_NE(error_of({"kitchen"}, missing).find("/nonexistent/pocketsphinx-model"), std::string::npos);
+  VoiceRecognizerConfig bad;
+  bad.min_score = std::nan("");
+  EXPECT_NE(error_of({"kitchen"}, bad).find("min_score"), std::string::npos);
+  // No places: a grammar without "go to".
+  const VoiceCommandRecognizer none({});
+  EXPECT_EQ(none.grammar().find("go to"), std::string::npos);
+}
+
+TEST(VoiceCommandErrors, RecordingWithoutAnAudioServerIsAClearError) {
+  try {
+    record_from_device("no-such-source", 0.5);
+    GTEST_SKIP() << "an audio source answered";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no-such-source"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(record_from_device("", -1.0), Error);
+}
+
+}  // namespace
+}  // namespace navaid::interaction
