@@ -184,8 +184,11 @@ VoiceCommandRecognizer::VoiceCommandRecognizer(std::vector<std::string> places, 
                               "pocketsphinx-en-us)",
                               p.string(), m.config.model_dir.string()));
   }
+  // Dither: synthesized and gated audio has runs of exact zeros whose log energy wrecks the
+  // features (measured: 67 % of commands recognised clean, 100 % with 20 dB of noise added).
+  // A fixed seed keeps it deterministic.
   cmd_ln_t* cfg = cmd_ln_init(nullptr, ps_args(), TRUE, "-hmm", hmm.c_str(), "-dict", dict.c_str(), "-samprate",
-                              "16000", "-logfn", "/dev/null", nullptr);
+                              "16000", "-dither", "yes", "-seed", "1", "-logfn", "/dev/null", nullptr);
   if (!cfg) throw Error(fmt::format("voice commands: pocketsphinx rejected its configuration (model {})", hmm.string()));
   m.ps = ps_init(cfg);
   cmd_ln_free_r(cfg);  // the decoder keeps its own reference

@@ -51,10 +51,10 @@ TEST_F(VoiceCommands, TheGrammarHoldsTheCommandsAndThePlaces) {
   EXPECT_DOUBLE_EQ(rec().config().min_score, 0.1);
 }
 
-// The two female English voices are recognised on every command (pocketsphinx's en-us model fits
-// them best; the measured rates of all voices are in docs/interaction-voice.md).
-TEST_F(VoiceCommands, EveryCommandInTheFemaleVoices) {
-  for (const char* voice : {"en+f3", "en+f5"}) {
+// Every command in a male, a female and an American voice (all six voices measured: 42 of 42,
+// docs/interaction-voice.md).
+TEST_F(VoiceCommands, EveryCommandInThreeVoices) {
+  for (const char* voice : {"en", "en+f3", "en-us"}) {
     for (const std::string& command : kCommands) {
       const VoiceCommand r = rec().recognize(spoken(command, voice));
       EXPECT_EQ(describe(r), command) << voice << ": heard '" << r.heard << "', score " << r.score;
@@ -82,10 +82,10 @@ TEST_F(VoiceCommands, OtherSpeechIsMostlyNotUnderstood) {
   }
   std::cout << "other speech: grammar forced " << forced << " of " << total << ", accepted after the ratio " << accepted
             << "\n";
-  // Measured on 36 sentences: the grammar forces 15 onto a command, the ratio lets 8 through
+  // Measured on 36 sentences: the grammar forces 19-23 onto a command, the ratio lets 9-10 through
   // (docs/interaction-voice.md).
   EXPECT_LT(accepted, forced);
-  EXPECT_LE(accepted, 10);
+  EXPECT_LE(accepted, 12);
 }
 
 TEST_F(VoiceCommands, SilenceAndNoiseAreNothing) {
