@@ -10,6 +10,7 @@
 
 #include "navaid/interaction/speech_synthesizer.hpp"
 #include "navaid/interaction/voice_command.hpp"
+#include "navaid/interaction/wav_file.hpp"
 
 namespace {
 
@@ -22,15 +23,7 @@ const std::vector<std::string> kOther{"the weather is nice today", "what time is
                                       "turn on the light", "hello", "thank you very much"};
 const std::vector<std::string> kVoices{"en", "en-us", "en-gb-x-rp", "en+m3", "en+f3", "en+f5"};
 
-AudioBuffer padded(const AudioBuffer& a) {
-  AudioBuffer out;
-  out.sample_rate_hz = a.sample_rate_hz;
-  const auto pad = static_cast<std::size_t>(0.3 * a.sample_rate_hz);
-  out.samples.assign(pad, 0);
-  out.samples.insert(out.samples.end(), a.samples.begin(), a.samples.end());
-  out.samples.insert(out.samples.end(), pad, 0);
-  return out;
-}
+AudioBuffer padded(const AudioBuffer& a) { return pad_with_silence(a, 0.3); }
 
 /// White noise at `snr_db` below the speech's power (measured over the speech samples).
 AudioBuffer with_noise(const AudioBuffer& a, double snr_db, std::mt19937& rng) {

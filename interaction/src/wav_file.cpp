@@ -230,4 +230,16 @@ AudioBuffer resample(const AudioBuffer& audio, int rate_hz) {
   return out;
 }
 
+AudioBuffer pad_with_silence(const AudioBuffer& audio, double seconds) {
+  if (!(seconds >= 0.0)) throw std::invalid_argument("pad_with_silence: the length must not be negative");
+  AudioBuffer out;
+  out.sample_rate_hz = audio.sample_rate_hz;
+  const auto pad = static_cast<std::size_t>(std::lround(seconds * audio.sample_rate_hz));
+  out.samples.reserve(audio.samples.size() + 2 * pad);
+  out.samples.assign(pad, 0);
+  out.samples.insert(out.samples.end(), audio.samples.begin(), audio.samples.end());
+  out.samples.insert(out.samples.end(), pad, 0);
+  return out;
+}
+
 }  // namespace navaid::interaction

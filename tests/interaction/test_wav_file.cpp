@@ -312,3 +312,20 @@ TEST(Resample, SuppressesWhatWouldAlias) {
   const AudioBuffer b = resample(a, 16000);
   EXPECT_LT(rms_middle(b), 10000 / std::sqrt(2.0) * 0.01);  // at least 40 dB down
 }
+
+namespace navaid::interaction {
+namespace {
+
+TEST(PadWithSilence, ZerosEitherSideAndTheRateKept) {
+  AudioBuffer a;
+  a.sample_rate_hz = 1000;
+  a.samples = {5, -7, 9};
+  const AudioBuffer p = pad_with_silence(a, 0.002);
+  EXPECT_EQ(p.sample_rate_hz, 1000);
+  EXPECT_EQ(p.samples, (std::vector<std::int16_t>{0, 0, 5, -7, 9, 0, 0}));
+  EXPECT_EQ(pad_with_silence(a, 0.0).samples, a.samples);
+  EXPECT_THROW(pad_with_silence(a, -1.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace navaid::interaction

@@ -26,14 +26,7 @@ const std::vector<std::string> kOtherSpeech{"the weather is nice today", "what t
 AudioBuffer spoken(const std::string& text, const std::string& voice) {
   SpeechConfig c;
   c.voice = voice;
-  const AudioBuffer a = SpeechSynthesizer(c).synthesize_uncached(text);
-  AudioBuffer out;
-  out.sample_rate_hz = a.sample_rate_hz;
-  const auto pad = static_cast<std::size_t>(0.3 * a.sample_rate_hz);
-  out.samples.assign(pad, 0);
-  out.samples.insert(out.samples.end(), a.samples.begin(), a.samples.end());
-  out.samples.insert(out.samples.end(), pad, 0);
-  return out;
+  return pad_with_silence(SpeechSynthesizer(c).synthesize_uncached(text), 0.3);
 }
 
 class VoiceCommands : public ::testing::Test {

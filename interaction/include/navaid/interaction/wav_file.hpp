@@ -24,4 +24,8 @@ void write_wav(const std::filesystem::path& file, const AudioBuffer& audio);
 /// Same rate returns a copy. Throws std::invalid_argument on a non-positive rate.
 AudioBuffer resample(const AudioBuffer& audio, int rate_hz);
 
+/// `audio` with `seconds` of digital silence before and after it (an utterance as a microphone
+/// segment would hold it). Throws std::invalid_argument on a negative length.
+AudioBuffer pad_with_silence(const AudioBuffer& audio, double seconds);
+
 }  // namespace navaid::interaction
