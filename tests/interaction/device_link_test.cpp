@@ -523,25 +523,41 @@ TEST(DeviceLinkFirmware, AMutedControllerLosesTheLinkWithoutLosingThePort) {
   EXPECT_EQ(events[1].kind, SystemEventKind::kLinkRestored);
 }
 
+/// A socat virtual null-modem cable: two ptys whose symlinks a() and b() are joined; killed when
+/// it goes out of scope.
+class SocatPair {
+ public:
+  explicit SocatPair(const std::filesystem::path& dir)
+      : a_((dir / "a").string()), b_((dir / "b").string()), log_((dir / "socat.log").string()) {
+    const std::string pid_file = (dir / "socat.pid").string();
+    const std::string cmd = "socat -d -d pty,raw,echo=0,link=" + a_ + " pty,raw,echo=0,link=" + b_ + " 2>" + log_ +
+                            " & echo $! > " + pid_file;
+    if (std::system(cmd.c_str()) != 0) return;
+    const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!ready() && std::chrono::steady_clock::now() < limit) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const std::string pid = navaid::testing::read_text(pid_file);
+    pid_ = pid.substr(0, pid.find('\n'));
+  }
+  ~SocatPair() {
+    if (!pid_.empty()) std::system(("kill " + pid_ + " 2>/dev/null").c_str());
+  }
+  SocatPair(const SocatPair&) = delete;
+  SocatPair& operator=(const SocatPair&) = delete;
+  bool ready() const { return std::filesystem::exists(a_) && std::filesystem::exists(b_); }
+  const std::string& a() const { return a_; }
+  const std::string& b() const { return b_; }
+  std::string log() const { return std::filesystem::exists(log_) ? navaid::testing::read_text(log_) : std::string(); }
+
+ private:
+  std::string a_, b_, log_, pid_;
+};
+
 TEST(DeviceLinkFirmware, OverASocatNullModemCable) {
   if (std::system("command -v socat >/dev/null 2>&1") != 0) GTEST_SKIP() << "socat is not installed";
   ScratchDir dir("device_link_socat");
-  const std::string a = (dir / "a").string();
-  const std::string b = (dir / "b").string();
-  const std::string log = (dir / "socat.log").string();
-  const std::string cmd = "socat -d -d pty,raw,echo=0,link=" + a + " pty,raw,echo=0,link=" + b + " 2>" + log +
-                          " & echo $! > " + (dir / "socat.pid").string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!(std::filesystem::exists(a) && std::filesystem::exists(b)) && std::chrono::steady_clock::now() < limit) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  const std::string pid = navaid::testing::read_text(dir / "socat.pid");
-  struct Kill {
-    std::string pid;
-    ~Kill() { std::system(("kill " + pid + " 2>/dev/null").c_str()); }
-  } kill{pid.substr(0, pid.find('\n'))};
-  ASSERT_TRUE(std::filesystem::exists(a) && std::filesystem::exists(b)) << navaid::testing::read_text(log);
+  const SocatPair socat(dir.path());
+  ASSERT_TRUE(socat.ready()) << socat.log();
+  const std::string a = socat.a(), b = socat.b();
   auto sim = firmware_sim::SimulatedController::attach(NAVAID_LINK_DEVICE_WHEEL, 1, b);
   FakeClock clock;
   DeviceLink link(a, DeviceKind::kWheel, LinkConfig{}, clock.fn());
@@ -613,22 +629,9 @@ class NoisyLine {
 TEST(DeviceLinkFirmware, OverASocatLineWithBitErrorsAndDrops) {
   if (std::system("command -v socat >/dev/null 2>&1") != 0) GTEST_SKIP() << "socat is not installed";
   ScratchDir dir("device_link_noisy");
-  const std::string a = (dir / "a").string();
-  const std::string b = (dir / "b").string();
-  const std::string log = (dir / "socat.log").string();
-  const std::string cmd = "socat -d -d pty,raw,echo=0,link=" + a + " pty,raw,echo=0,link=" + b + " 2>" + log +
-                          " & echo $! > " + (dir / "socat.pid").string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!(std::filesystem::exists(a) && std::filesystem::exists(b)) && std::chrono::steady_clock::now() < limit) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  const std::string pid = navaid::testing::read_text(dir / "socat.pid");
-  struct Kill {
-    std::string pid;
-    ~Kill() { std::system(("kill " + pid + " 2>/dev/null").c_str()); }
-  } kill{pid.substr(0, pid.find('\n'))};
-  ASSERT_TRUE(std::filesystem::exists(a) && std::filesystem::exists(b)) << navaid::testing::read_text(log);
+  const SocatPair socat(dir.path());
+  ASSERT_TRUE(socat.ready()) << socat.log();
+  const std::string a = socat.a(), b = socat.b();
   firmware_sim::SimulatedController sim(NAVAID_LINK_DEVICE_BELT, 5);
   const int line_end = ::open(b.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
   const int sim_end = ::open(sim.slave_path().c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
