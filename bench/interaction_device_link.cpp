@@ -159,6 +159,19 @@ void latency_counters(benchmark::State& state, const std::vector<double>& us) {
   state.counters["max_us"] = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
 }
 
+/// Drains the pty, runs `act` and appends the microseconds to its first byte; false (and the
+/// benchmark marked failed) when no byte came within 1 s.
+template <class Act>
+bool time_first_byte(benchmark::State& state, PtyMaster& pty, std::vector<double>& us, Act act) {
+  pty.drain();
+  const auto t0 = std::chrono::steady_clock::now();
+  act();
+  us.push_back(pty.first_byte_us(t0));
+  if (us.back() >= 0) return true;
+  state.SkipWithError("no byte within 1 s");
+  return false;
+}
+
 /// Latency from DeviceLink::send() to the first byte readable on the pty master. Nobody answers:
 /// each new pattern supersedes the last, which does not change what is measured.
 void BM_PatternToFirstBytePty(benchmark::State& state) {
@@ -171,15 +184,8 @@ void BM_PatternToFirstBytePty(benchmark::State& state) {
   std::vector<double> us;
   int k = 0;
   for (auto _ : state) {
-    pty.drain();
     const ActuatorPattern p = belt_pattern(k++);
-    const auto t0 = std::chrono::steady_clock::now();
-    link.send(p);
-    us.push_back(pty.first_byte_us(t0));
-    if (us.back() < 0) {
-      state.SkipWithError("no byte within 1 s");
-      break;
-    }
+    if (!time_first_byte(state, pty, us, [&] { link.send(p); })) break;
   }
   pty.drain();
   link.close();
@@ -216,14 +222,7 @@ void BM_GuidanceCommandToFirstBytePty(benchmark::State& state, bool stop) {
       c.reason = planning::GuidanceReason::kPathFound;
       c.heading_rad = (k++ % 2 == 0 ? 0.8 : -0.8);
     }
-    pty.drain();
-    const auto t0 = std::chrono::steady_clock::now();
-    session.feed(c);
-    us.push_back(pty.first_byte_us(t0));
-    if (us.back() < 0) {
-      state.SkipWithError("no byte within 1 s");
-      break;
-    }
+    if (!time_first_byte(state, pty, us, [&] { session.feed(c); })) break;
   }
   pty.drain();
   link.close();
