@@ -4,10 +4,15 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
-#include "progress.hpp"
-#include "run_process.hpp"
+#include "navaid/experiments/progress.hpp"
+#include "navaid/experiments/run_process.hpp"
 
 namespace navaid::cli {
+
+using experiments::Progress;
+using experiments::run_process;
+using experiments::self_executable;
+
 
 namespace {
 

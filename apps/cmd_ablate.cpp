@@ -11,9 +11,13 @@
 #include "commands.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/ablation.hpp"
-#include "run_process.hpp"
+#include "navaid/experiments/run_process.hpp"
 
 namespace navaid::cli {
+
+using experiments::run_process;
+using experiments::figures_dir;
+
 
 namespace {
 

@@ -17,9 +17,12 @@
 #include "navaid/experiments/monte_carlo_nees.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/io/open_input.hpp"
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 
 namespace navaid::cli {
+
+using experiments::run_figure_script;
+
 namespace fs = std::filesystem;
 namespace ex = navaid::experiments;
 namespace {

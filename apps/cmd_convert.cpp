@@ -10,9 +10,12 @@
 #include "input_option.hpp"
 #include "navaid/core/geodesy.hpp"
 #include "navaid/io/navaid_recording.hpp"
-#include "progress.hpp"
+#include "navaid/experiments/progress.hpp"
 
 namespace navaid::cli {
+
+using experiments::Progress;
+
 
 void add_convert_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("convert",

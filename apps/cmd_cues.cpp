@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/interaction/cue_session.hpp"
@@ -21,6 +21,9 @@
 #include "navaid/interaction/wav_file.hpp"
 
 namespace navaid::cli {
+
+using experiments::run_figure_script;
+
 
 namespace {
 

@@ -13,9 +13,12 @@
 #include "navaid/experiments/trajectory_evaluation.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 
 namespace navaid::cli {
+
+using experiments::run_figure_script;
+
 namespace fs = std::filesystem;
 namespace ex = navaid::experiments;
 namespace {

@@ -32,9 +32,12 @@
 #include "navaid/planning/apriltag_detector.hpp"
 #include "navaid/planning/hand_guidance.hpp"
 #include "navaid/simulation/apriltag_image.hpp"
-#include "progress.hpp"
+#include "navaid/experiments/progress.hpp"
 
 namespace navaid::cli {
+
+using experiments::Progress;
+
 
 namespace {
 

@@ -9,12 +9,20 @@
 #include "commands.hpp"
 #include "input_option.hpp"
 #include "map_poses.hpp"
-#include "map_session.hpp"
+#include "navaid/experiments/map_session.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/run_folder.hpp"
-#include "progress.hpp"
+#include "navaid/experiments/progress.hpp"
 
 namespace navaid::cli {
+
+using experiments::Progress;
+using experiments::MapSession;
+using experiments::MapSessionOptions;
+using experiments::read_obstacle_options;
+using experiments::recording_start;
+using experiments::groundtruth_poses;
+
 
 namespace {
 

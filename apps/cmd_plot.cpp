@@ -10,9 +10,12 @@
 #include "commands.hpp"
 #include "input_option.hpp"
 #include "navaid/core/geodesy.hpp"
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 
 namespace navaid::cli {
+
+using experiments::run_figure_script;
+
 namespace fs = std::filesystem;
 namespace {
 

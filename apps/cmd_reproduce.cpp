@@ -7,12 +7,16 @@
 
 #include "ablation_hooks.hpp"
 #include "commands.hpp"
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/reproduction.hpp"
-#include "run_process.hpp"
+#include "navaid/experiments/run_process.hpp"
 
 namespace navaid::cli {
+
+using experiments::run_figure_script;
+using experiments::figures_dir;
+
 
 namespace {
 

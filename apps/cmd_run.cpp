@@ -27,11 +27,25 @@
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
-#include "map_session.hpp"
-#include "run_pipeline.hpp"
-#include "run_topview.hpp"
+#include "navaid/experiments/map_session.hpp"
+#include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/experiments/run_topview.hpp"
 
 namespace navaid::cli {
+
+using experiments::MapSession;
+using experiments::MapSessionOptions;
+using experiments::read_obstacle_options;
+using experiments::groundtruth_poses;
+using experiments::replay_pipeline;
+using experiments::realtime_pipeline;
+using experiments::PipelineInput;
+using experiments::RealtimeOptions;
+using experiments::PipelineResult;
+using experiments::percentile;
+using experiments::draw_run_topview;
+using experiments::validate;
+
 
 namespace {
 

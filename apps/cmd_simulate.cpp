@@ -12,9 +12,12 @@
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/simulation/simulator.hpp"
-#include "progress.hpp"
+#include "navaid/experiments/progress.hpp"
 
 namespace navaid::cli {
+
+using experiments::Progress;
+
 
 namespace {
 

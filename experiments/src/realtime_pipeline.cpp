@@ -29,10 +29,10 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/io/event_stream.hpp"
-#include "progress.hpp"
-#include "run_pipeline.hpp"
+#include "navaid/experiments/progress.hpp"
+#include "navaid/experiments/estimator_pipeline.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -356,4 +356,4 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
   return result;
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

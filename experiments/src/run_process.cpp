@@ -1,4 +1,4 @@
-#include "run_process.hpp"
+#include "navaid/experiments/run_process.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -13,7 +13,7 @@
 
 extern char** environ;
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 int run_process(const std::vector<std::string>& argv, const std::string& log_file) {
   std::vector<char*> args;
@@ -47,4 +47,4 @@ std::string figures_dir() {
   return NAVAID_INSTALLED_FIGURES_DIR;
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

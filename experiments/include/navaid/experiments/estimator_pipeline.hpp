@@ -16,7 +16,7 @@
 #include "navaid/estimation/sliding_window_estimator.hpp"
 #include "navaid/io/recording.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 struct FrontendTime {
   double track_ms = 0, load_ms = 0;
@@ -88,4 +88,4 @@ inline double percentile(std::vector<double> v, double p) {
   return v[lo] + (idx - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -22,7 +22,7 @@
 #include "navaid/mapping/obstacle_pipeline.hpp"
 #include "navaid/mapping/segmentation_link.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 struct MapSessionOptions {
   double snapshot_every_s = 1.0;  ///< recording seconds between snapshots (top view, quality)
@@ -109,4 +109,4 @@ class MapSession {
   bool aligned_ = false;
 };
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

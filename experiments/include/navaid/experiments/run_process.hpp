@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 /// Returns the exit status; throws navaid::Error when the program cannot be started. With a
 /// log file, the program's stdout and stderr go there (created or truncated).
@@ -16,4 +16,4 @@ std::string self_executable();
 /// experiments/figures, else the installed share/navaid/figures.
 std::string figures_dir();
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -1,10 +1,10 @@
-#include "progress.hpp"
+#include "navaid/experiments/progress.hpp"
 
 #include <unistd.h>
 
 #include <cstdio>
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 Progress::Progress(std::string label, std::size_t total)
     : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) != 0 && total > 0) {}
@@ -31,4 +31,4 @@ void Progress::finish() {
   std::fprintf(stderr, "\n");
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -11,7 +11,7 @@
 #include "navaid/core/state_estimate.hpp"
 #include "navaid/experiments/trajectory_alignment.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 /// Plot frame: with `W_to_groundtruth` (the 4-DOF alignment of the ATE), every estimate mapped
 /// into the ground truth's frame and the ground truth drawn too (plus the ENU track T_ENU_W T_W_B,
@@ -22,4 +22,4 @@ void draw_run_topview(const std::filesystem::path& run_dir, const std::vector<St
                       const std::vector<GroundTruthState>& groundtruth,
                       const std::optional<experiments::Similarity>& W_to_groundtruth, const std::string& title);
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -1,4 +1,4 @@
-#include "map_session.hpp"
+#include "navaid/experiments/map_session.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -11,9 +11,9 @@
 #include "navaid/io/image_io.hpp"
 #include "navaid/mapping/map_png.hpp"
 #include "navaid/simulation/simulation_config.hpp"
-#include "run_pipeline.hpp"
+#include "navaid/experiments/estimator_pipeline.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 namespace {
 
@@ -297,4 +297,4 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   return j;
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -5,10 +5,10 @@
 #include <map>
 
 #include "navaid/io/event_stream.hpp"
-#include "progress.hpp"
-#include "run_pipeline.hpp"
+#include "navaid/experiments/progress.hpp"
+#include "navaid/experiments/estimator_pipeline.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 PipelineResult replay_pipeline(const PipelineInput& in) {
   using Clock = std::chrono::steady_clock;
@@ -69,4 +69,4 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
   return result;
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

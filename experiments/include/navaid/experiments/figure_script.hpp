@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 /// Runs `python3 <figures_dir()>/<script> <args...>`. Throws navaid::Error naming the command when
 /// python cannot be started or the script exits with a non-zero status.
 void run_figure_script(const std::string& script, const std::vector<std::string>& args);
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -1,14 +1,14 @@
-#include "run_topview.hpp"
+#include "navaid/experiments/run_topview.hpp"
 
 #include <fmt/format.h>
 
 #include <fstream>
 #include <string_view>
 
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 #include "navaid/core/errors.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 namespace fs = std::filesystem;
 namespace {
 
@@ -67,4 +67,4 @@ void draw_run_topview(const fs::path& run_dir, const std::vector<StateEstimate>&
   run_figure_script("plot_run_topview.py", args);
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

@@ -1,12 +1,12 @@
-#include "figure_script.hpp"
+#include "navaid/experiments/figure_script.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "navaid/core/errors.hpp"
-#include "run_process.hpp"
+#include "navaid/experiments/run_process.hpp"
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 void run_figure_script(const std::string& script, const std::vector<std::string>& args) {
   std::vector<std::string> argv{"/usr/bin/python3", figures_dir() + "/" + script};
@@ -16,4 +16,4 @@ void run_figure_script(const std::string& script, const std::vector<std::string>
   if (rc != 0) throw Error(fmt::format("the plotting script failed (exit status {}); command: {}", rc, fmt::join(argv, " ")));
 }
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments

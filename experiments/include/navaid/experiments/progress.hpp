@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-namespace navaid::cli {
+namespace navaid::experiments {
 
 class Progress {
  public:
@@ -22,4 +22,4 @@ class Progress {
   std::chrono::steady_clock::time_point last_draw_;
 };
 
-}  // namespace navaid::cli
+}  // namespace navaid::experiments
