@@ -59,17 +59,6 @@ constexpr std::array<HandDirection, 11> kDirections = {
     HandDirection::kDownRight, HandDirection::kForward, HandDirection::kBackward};
 constexpr std::array<const char*, 4> kCases = {"I", "II", "III", "none"};
 
-ImageU8 to_gray(const ImageU8& image, const std::string& file) {
-  if (image.channels == 1) return image;
-  if (image.channels != 3) throw IoError(file, fmt::format("expected a grey or RGB image, found {} channels", image.channels));
-  ImageU8 g(image.width, image.height, 1);
-  for (std::size_t i = 0; i < g.pixels.size(); ++i) {
-    const std::uint8_t* p = &image.pixels[3 * i];
-    g.pixels[i] = static_cast<std::uint8_t>((299 * p[0] + 587 * p[1] + 114 * p[2] + 500) / 1000);
-  }
-  return g;
-}
-
 // A CSV field that may hold commas or quotes.
 std::string csv_quoted(const std::string& s) {
   std::string q = "\"";
@@ -221,7 +210,7 @@ void run(const HandGuideArgs& a) {
     frame.labels_path.clear();
     frame.confidence_path.clear();
     io::load_frame_images(frame);
-    const ImageU8 gray = to_gray(frame.intensity, frame.intensity_path);
+    const ImageU8 gray = io::to_gray(frame.intensity, frame.intensity_path);
     const auto tag = planning::find_tag(detector.detect(gray, camera.get()), tag_id);
     std::optional<planning::TargetDetection> detection;
     if (tag) {

@@ -60,14 +60,7 @@ void run(const RumbleArgs& a) {
     ++count[k];
     if (i + 1 < scans.size()) seconds[k] += ns_to_seconds(scans[i + 1].t - scans[i].t);
     if (previous && *previous != state) ++changes;
-    planning::GuidanceCommand command;
-    command.t = scans[i].t;
-    command.action = planning::GuidanceAction::kGo;
-    command.reason = state == planning::RumbleState::kOff ? planning::GuidanceReason::kPathFound
-                                                          : planning::GuidanceReason::kObstacleAhead;
-    command.confidence = 1.0;  // the scan is in the cane's own frame: no pose uncertainty in it
-    command.rumble = state;
-    timeline.emplace_back(command);
+    timeline.emplace_back(planning::rumble_command(scans[i].t, state));
     previous = state;
   }
   csv.close();

@@ -43,13 +43,6 @@ std::string outcome_name(mapping::FrameOutcome o) {
   return "?";
 }
 
-/// The simulated world behind a recording written by navaid simulate (its simulation.yaml).
-std::optional<simulation::Scenario> recording_scenario(const std::filesystem::path& recording) {
-  const auto file = recording / "simulation.yaml";
-  if (!std::filesystem::is_regular_file(file)) return std::nullopt;
-  const Config c = Config::load(file);
-  return simulation::make_scenario(simulation::read_scenario_name(c), simulation::read_scenario_options(c));
-}
 
 nlohmann::ordered_json quality_json(const experiments::MapQuality& q, const simulation::Scenario& scenario) {
   nlohmann::ordered_json j;
@@ -80,6 +73,13 @@ nlohmann::ordered_json quality_json(const experiments::MapQuality& q, const simu
 }
 
 }  // namespace
+
+std::optional<simulation::Scenario> recording_scenario(const std::filesystem::path& recording) {
+  const auto file = recording / "simulation.yaml";
+  if (!std::filesystem::is_regular_file(file)) return std::nullopt;
+  const Config c = Config::load(file);
+  return simulation::make_scenario(simulation::read_scenario_name(c), simulation::read_scenario_options(c));
+}
 
 std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording) {
   std::vector<io::StampedPose> gt;
@@ -228,12 +228,20 @@ void MapSession::scan_obstacles(const RgbdFrame& frame, const StateEstimate& est
   const SE3 T_U_C_prior(Mat3(R_W_U.transpose() * R_W_C), Vec3(0, 0, options_.obstacle_prior_camera_height_m));
   const auto scan = obstacles_->process(mapping::camera_points_from_depth(frame, camera_, options_.obstacle_pixel_stride),
                                         T_U_C_prior, frame.t);
+  last_scan_ = scan;
   obstacle_csv_ << fmt::format("{},{},{},{},{}", frame.t, static_cast<int>(scan.counters.ground_source),
                                scan.counters.ransac_succeeded ? 1 : 0, scan.counters.obstacle_points,
                                scan.counters.drop_off_points);
   for (const auto* ranges : {&scan.ranges, &scan.drop_off_ranges})
     for (const float r : *ranges) obstacle_csv_ << "," << (std::isfinite(r) ? fmt::format("{:.3f}", r) : std::string());
   obstacle_csv_ << "\n";
+}
+
+std::vector<interaction::GuidanceTimelineEntry> MapSession::take_system_events() {
+  std::vector<interaction::GuidanceTimelineEntry> events(network_events_.begin() + static_cast<std::ptrdiff_t>(network_events_taken_),
+                                                         network_events_.end());
+  network_events_taken_ = network_events_.size();
+  return events;
 }
 
 void MapSession::write_layer_pngs(const std::filesystem::path& dir, const std::string& prefix) const {

@@ -1,5 +1,7 @@
 #include "navaid/io/image_io.hpp"
 
+#include <fmt/format.h>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -260,6 +262,17 @@ void release_frame_images(RgbdFrame& frame) {
   frame.labels.reset();
   frame.label_confidence.reset();
   frame.class_probabilities.reset();
+}
+
+ImageU8 to_gray(const ImageU8& image, const std::string& file) {
+  if (image.channels == 1) return image;
+  if (image.channels != 3) throw IoError(file, fmt::format("expected a grey or RGB image, found {} channels", image.channels));
+  ImageU8 g(image.width, image.height, 1);
+  for (std::size_t i = 0; i < g.pixels.size(); ++i) {
+    const std::uint8_t* p = &image.pixels[3 * i];
+    g.pixels[i] = static_cast<std::uint8_t>((299 * p[0] + 587 * p[1] + 114 * p[2] + 500) / 1000);
+  }
+  return g;
 }
 
 }  // namespace navaid::io

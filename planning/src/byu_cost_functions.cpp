@@ -225,4 +225,14 @@ GuidanceCommand byu_guidance(const mapping::ObstacleScan& scan, EstimatorMode mo
   return cmd;
 }
 
+GuidanceCommand rumble_command(Timestamp t, RumbleState state) {
+  GuidanceCommand command;
+  command.t = t;
+  command.action = GuidanceAction::kGo;
+  command.reason = state == RumbleState::kOff ? GuidanceReason::kPathFound : GuidanceReason::kObstacleAhead;
+  command.confidence = 1.0;
+  command.rumble = state;
+  return command;
+}
+
 }  // namespace navaid::planning

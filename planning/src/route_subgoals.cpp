@@ -148,18 +148,29 @@ RouteSubgoal route_subgoal(const std::vector<SubRoute>& subroutes, const Vec2& u
   return out;
 }
 
-Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const estimation::GpsRegistration& registration) {
-  if (!registration.registered()) {
-    throw Error(std::string("subgoal_in_world: the GPS-map registration is not ready (") +
-                estimation::to_string(registration.status) + ")");
-  }
-  const double yaw = registration.alignment[0];
-  const Vec2 t(registration.alignment[1], registration.alignment[2]);
+namespace {
+
+Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, double yaw, const Vec2& t) {
   const Eigen::Rotation2Dd inverse(-yaw);
   Subgoal w = subgoal_ENU;
   if (subgoal_ENU.goal_W) w.goal_W = inverse * (*subgoal_ENU.goal_W - t);
   if (subgoal_ENU.direction_rad) w.direction_rad = std::remainder(*subgoal_ENU.direction_rad - yaw, 2 * 3.14159265358979323846);
   return w;
+}
+
+}  // namespace
+
+Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const estimation::GpsRegistration& registration) {
+  if (!registration.registered()) {
+    throw Error(std::string("subgoal_in_world: the GPS-map registration is not ready (") +
+                estimation::to_string(registration.status) + ")");
+  }
+  return subgoal_in_world(subgoal_ENU, registration.alignment[0],
+                          Vec2(registration.alignment[1], registration.alignment[2]));
+}
+
+Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const SE3& T_ENU_W) {
+  return subgoal_in_world(subgoal_ENU, yaw_of(T_ENU_W.q), T_ENU_W.t.head<2>());
 }
 
 }  // namespace navaid::planning

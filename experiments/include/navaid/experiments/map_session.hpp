@@ -56,6 +56,9 @@ void read_obstacle_options(const Config& config, MapSessionOptions& options);
 /// or magnetometer sample (0 for an empty recording).
 Timestamp recording_start(const io::Recording& recording);
 
+/// The simulated world behind a recording written by navaid simulate (its simulation.yaml), if any.
+std::optional<simulation::Scenario> recording_scenario(const std::filesystem::path& recording);
+
 /// The recording's ground truth as stamped poses (for MapSessionOptions::align_to).
 std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording);
 
@@ -77,6 +80,10 @@ class MapSession {
   nlohmann::ordered_json finish(const nlohmann::ordered_json& extra);
 
   const mapping::Mapper& mapper() const { return mapper_; }
+  /// The obstacle scan of the last frame that had one (mapping.obstacles.enabled).
+  const std::optional<mapping::ObstacleScan>& last_obstacle_scan() const { return last_scan_; }
+  /// Network changes not yet taken (mapping.network.*), as system events for the cues.
+  std::vector<interaction::GuidanceTimelineEntry> take_system_events();
 
  private:
   /// height, undulation, collision, cost and ESDF PNGs of the last mapped frame's window.
@@ -93,6 +100,8 @@ class MapSession {
   std::ofstream network_csv_;
   /// The same changes as system events on the recording's clock (system_events.csv, for navaid cues).
   std::vector<interaction::GuidanceTimelineEntry> network_events_;
+  std::size_t network_events_taken_ = 0;
+  std::optional<mapping::ObstacleScan> last_scan_;
   std::size_t geometry_only_ = 0;  ///< frames mapped without labels because the link was down
   std::filesystem::path out_;
   MapSessionOptions options_;

@@ -24,6 +24,9 @@ void release_frame_images(RgbdFrame& frame);
 /// Any 8-bit image OpenCV decodes: grey stays 1 channel, colour becomes RGB (3 channels, alpha
 /// dropped). 16-bit intensity images are rejected rather than silently rescaled.
 ImageU8 read_intensity_image(const std::string& path);
+/// Grey (one channel) from a grey or RGB image (ITU-R BT.601 weights); IoError naming `file` for
+/// any other channel count.
+ImageU8 to_gray(const ImageU8& image, const std::string& file);
 /// 8-bit single-channel PNG of class ids.
 ImageU8 read_label_image(const std::string& path);
 /// 8-bit single-channel label-confidence PNG, raw units (round(255 p)).

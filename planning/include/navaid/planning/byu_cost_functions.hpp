@@ -139,6 +139,10 @@ ByuCosts byu_costs(const mapping::ObstacleScan& scan, ByuCostFunction function, 
 /// free (D.5's strict <).
 RumbleState rumble_state(const ByuCosts& costs, const ByuThresholds& thresholds);
 
+/// The GuidanceCommand of one scan's rumble state: go, path-found when off, obstacle-ahead
+/// otherwise; confidence 1 (the scan is in the cane's own frame: no pose uncertainty in it).
+GuidanceCommand rumble_command(Timestamp t, RumbleState state);
+
 /// One command from one scan. The rumble is always given, whatever the estimator's mode: the scan
 /// lives in frame U (levelled by the scan's own ground plane), needs neither position nor yaw, and
 /// withholding an obstacle warning while the estimator initializes or is lost would take away the

@@ -62,5 +62,7 @@ RouteSubgoal route_subgoal(const std::vector<SubRoute>& subroutes, const Vec2& u
 /// goal_W = Rz(-yaw) (goal_ENU - t), heading_W = heading_ENU - yaw. Throws Error when the
 /// registration is not registered().
 Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const estimation::GpsRegistration& registration);
+/// The same through a StateEstimate's T_ENU_W (4-DOF: its yaw and translation).
+Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const SE3& T_ENU_W);
 
 }  // namespace navaid::planning

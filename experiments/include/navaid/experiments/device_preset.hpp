@@ -1,0 +1,60 @@
+#pragma once
+// A device preset: one YAML file under experiments/devices/ that says which layers a full-device
+// run joins and how (docs/full-device-runs.md): the guidance chain, the actuator, speech, what the
+// recording must carry, and the estimator / mapping / planning / interaction keys of that device.
+// Any key can be changed with --set like every other configuration.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "navaid/core/config.hpp"
+#include "navaid/interaction/actuator_pattern.hpp"
+#include "navaid/io/recording.hpp"
+
+namespace navaid::experiments {
+
+/// The planning chain that turns estimates and maps into GuidanceCommands.
+enum class GuidanceKind {
+  kRoute,           ///< eLabrador: walking route -> directional subgoal -> Direction A* -> path following
+  kWalkingPath,     ///< Smart Cane: ESDF + walking-path generator re-planning at 10 Hz + PI steering
+  kObstacleRumble,  ///< BYU augmented cane: PCL obstacle scan -> FICF / CACF -> rumble table
+  kHandTarget,      ///< W-ROMA: AprilTag-marked target -> hand guidance cases I / II / III
+};
+std::string_view to_string(GuidanceKind kind);
+
+struct DeviceSpec {
+  std::string name;
+  GuidanceKind guidance = GuidanceKind::kRoute;
+  interaction::DeviceKind actuator = interaction::DeviceKind::kBelt;
+  std::string speech = "on";  ///< on (espeak-ng, speech.wav) | text | off
+  bool needs_depth = true;    ///< device.needs: depth
+  bool needs_gps = false;     ///< device.needs: gps
+  /// Map every n-th estimate (the planners read the newest map; mapping is the costly stage).
+  std::size_t map_every = 1;
+  /// kRoute: the OSM file of the streets (empty: the simulated scenario's own streets) and the
+  /// destination (lat, lon; empty: the end of the scenario's path).
+  std::filesystem::path route_osm;
+  std::optional<std::pair<double, double>> route_to;
+  /// kWalkingPath: the goal in the start pose's frame (forward, left) [m]; empty: the end of the
+  /// simulated scenario's path.
+  std::optional<std::pair<double, double>> goal_start_frame_m;
+};
+
+/// Reads device.* (ConfigError naming the key on a bad value).
+DeviceSpec read_device_spec(const Config& config);
+
+/// The folder of the presets: $NAVAID_DEVICES_DIR, else the source tree's experiments/devices,
+/// else the installed share/navaid/devices.
+std::filesystem::path devices_dir();
+/// The presets' names (the YAML files in devices_dir()), sorted.
+std::vector<std::string> device_preset_names();
+/// The preset's file; UsageError listing the presets when there is none of that name.
+std::filesystem::path device_preset_file(const std::string& name);
+
+/// What the recording lacks for the device, in words ("depth images", "GPS fixes", ...); empty
+/// when it serves. A route without its OSM file needs a simulated recording.
+std::vector<std::string> missing_for_device(const DeviceSpec& spec, const io::Recording& recording,
+                                            const std::filesystem::path& recording_dir);
+
+}  // namespace navaid::experiments

@@ -1,0 +1,104 @@
+#include "navaid/experiments/device_preset.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "navaid/core/errors.hpp"
+
+namespace navaid::experiments {
+
+std::string_view to_string(GuidanceKind kind) {
+  switch (kind) {
+    case GuidanceKind::kRoute: return "route";
+    case GuidanceKind::kWalkingPath: return "walking-path";
+    case GuidanceKind::kObstacleRumble: return "obstacle-rumble";
+    case GuidanceKind::kHandTarget: return "hand-target";
+  }
+  return "?";
+}
+
+namespace {
+
+std::optional<std::pair<double, double>> optional_pair(const Config& config, const std::string& key,
+                                                       Range allowed) {
+  if (!config.has(key)) return std::nullopt;
+  const std::vector<double> v = config.get_doubles(key, 2, allowed);
+  return std::make_pair(v[0], v[1]);
+}
+
+}  // namespace
+
+DeviceSpec read_device_spec(const Config& config) {
+  DeviceSpec s;
+  s.name = config.get_string("device.name");
+  const std::string guidance =
+      config.get_string("device.guidance", {"route", "walking-path", "obstacle-rumble", "hand-target"});
+  for (GuidanceKind k : {GuidanceKind::kRoute, GuidanceKind::kWalkingPath, GuidanceKind::kObstacleRumble,
+                         GuidanceKind::kHandTarget})
+    if (to_string(k) == guidance) s.guidance = k;
+  s.actuator = *interaction::device_kind_from_string(config.get_string("device.actuator", {"belt", "hand", "rumble", "wheel"}));
+  if (config.has("device.speech")) s.speech = config.get_string("device.speech", std::string("on"), {"on", "text", "off"});
+  s.needs_depth = false;
+  for (const std::string& need : config.get_strings("device.needs", {"depth"})) {
+    if (need == "depth") {
+      s.needs_depth = true;
+    } else if (need == "gps") {
+      s.needs_gps = true;
+    } else {
+      throw ConfigError(config.origin("device.needs"), "device.needs", "'" + need + "' is not depth or gps");
+    }
+  }
+  s.map_every = static_cast<std::size_t>(config.get_int("device.map_every", 1, 1, 100));
+  if (config.has("device.route.osm")) s.route_osm = config.get_string("device.route.osm");
+  s.route_to = optional_pair(config, "device.route.to", {-180.0, 180.0});
+  s.goal_start_frame_m = optional_pair(config, "device.goal_start_frame_m", {-1000.0, 1000.0});
+  return s;
+}
+
+std::filesystem::path devices_dir() {
+  if (const char* env = std::getenv("NAVAID_DEVICES_DIR")) return env;
+  if (std::filesystem::is_directory(NAVAID_SOURCE_DEVICES_DIR)) return NAVAID_SOURCE_DEVICES_DIR;
+  return NAVAID_INSTALLED_DEVICES_DIR;
+}
+
+std::vector<std::string> device_preset_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(devices_dir(), ec))
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::filesystem::path device_preset_file(const std::string& name) {
+  const std::filesystem::path file = devices_dir() / (name + ".yaml");
+  if (std::filesystem::is_regular_file(file)) return file;
+  throw UsageError(fmt::format("no device preset '{}' in {} (presets: {})", name, devices_dir().string(),
+                               fmt::join(device_preset_names(), ", ")));
+}
+
+std::vector<std::string> missing_for_device(const DeviceSpec& spec, const io::Recording& recording,
+                                            const std::filesystem::path& recording_dir) {
+  std::vector<std::string> missing;
+  if (recording.imu.empty()) missing.push_back("IMU samples (the estimator needs them)");
+  if (recording.frames.empty()) missing.push_back("image frames (the device maps and guides from them)");
+  const bool any_depth = std::any_of(recording.frames.begin(), recording.frames.end(),
+                                     [](const RgbdFrame& f) { return f.has_depth(); });
+  if (spec.needs_depth && !recording.frames.empty() && !any_depth)
+    missing.push_back("depth images (device " + spec.name + " maps obstacles from depth)");
+  if (spec.needs_gps && recording.gps.empty())
+    missing.push_back("GPS fixes (device " + spec.name + " follows a route registered to GPS)");
+  const bool simulated = std::filesystem::is_regular_file(recording_dir / "simulation.yaml");
+  if (spec.guidance == GuidanceKind::kRoute && spec.route_osm.empty() && !simulated)
+    missing.push_back("a street map: set device.route.osm=FILE and device.route.to=LAT,LON (only a simulated "
+                      "recording brings its own streets)");
+  if (spec.guidance == GuidanceKind::kRoute && !spec.route_osm.empty() && !spec.route_to && !simulated)
+    missing.push_back("a destination: set device.route.to=LAT,LON");
+  if (spec.guidance == GuidanceKind::kWalkingPath && !spec.goal_start_frame_m && !simulated)
+    missing.push_back("a goal: set device.goal_start_frame_m=FORWARD,LEFT (metres from the start pose)");
+  return missing;
+}
+
+}  // namespace navaid::experiments

@@ -1,0 +1,96 @@
+// W-ROMA's chain (seed w-roma, §IV): the AprilTag detector on each frame's intensity image, the
+// depth patch around the tag's centre, and hand guidance with the frame's estimate (cases I / II /
+// III: detected with depth, detected beyond the depth range, remembered through the pose). The
+// target's tag: device.tag_id, else the recording's targets.csv.
+#include <fmt/format.h>
+
+#include <array>
+#include <map>
+
+#include "navaid/core/camera.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/io/image_io.hpp"
+#include "navaid/io/targets_csv.hpp"
+#include "navaid/planning/apriltag_detector.hpp"
+#include "navaid/planning/hand_guidance.hpp"
+
+namespace navaid::experiments {
+namespace {
+
+int target_tag_id(const GuidanceStageContext& c, const std::string& family) {
+  if (c.config.has("device.tag_id")) return static_cast<int>(c.config.get_int("device.tag_id", 0, 586));
+  const auto file = c.recording_dir / io::kTargetsCsv;
+  if (std::filesystem::exists(file))
+    for (const auto& t : io::read_targets_csv(file))
+      if (t.tag_family == family) return t.tag_id;
+  throw Error(c.recording_dir.string() + ": device " + c.spec.name + " guides the hand to a tagged object: set " +
+              "device.tag_id (the recording has no targets.csv with a " + family + " tag)");
+}
+
+SE3 hand_from_camera(const Config& config) {
+  const std::vector<double> t = config.has("planning.hand.t_H_C_m")
+                                    ? config.get_doubles("planning.hand.t_H_C_m", 3, {-2.0, 2.0})
+                                    : std::vector<double>{0.0, 0.0, 0.0};
+  return SE3(Quat::Identity(), Vec3(t[0], t[1], t[2]));
+}
+
+class HandTargetStage final : public GuidanceStage {
+ public:
+  explicit HandTargetStage(const GuidanceStageContext& c)
+      : detector_config_(planning::read_apriltag_detector_config(c.config)),
+        guidance_config_(planning::read_hand_guidance_config(c.config)),
+        tag_id_(target_tag_id(c, detector_config_.family)),
+        camera_(make_camera_model(c.camera, c.recording_dir.string())),
+        detector_(detector_config_),
+        guidance_(guidance_config_, *camera_, hand_from_camera(c.config)),
+        depth_min_m_(c.camera.depth_max_m > 0.0 ? c.camera.depth_min_m : 0.3),
+        depth_max_m_(c.camera.depth_max_m > 0.0 ? c.camera.depth_max_m : 5.0) {}
+
+  GuidanceOutput update(const GuidanceInput& in) override {
+    GuidanceOutput out;
+    out.planner = "hand-guidance";
+    RgbdFrame frame = in.frame;
+    frame.labels_path.clear();
+    frame.confidence_path.clear();
+    io::load_frame_images(frame);
+    const ImageU8 gray = io::to_gray(frame.intensity, frame.intensity_path);
+    const auto tag = planning::find_tag(detector_.detect(gray, camera_.get()), tag_id_);
+    std::optional<planning::TargetDetection> detection;
+    if (tag) {
+      ++detected_;
+      detection = planning::TargetDetection{tag->centre_px, tag->corners_px, std::nullopt};
+      if (!frame.depth.empty())
+        detection->depth = planning::depth_patch_stats(frame.depth, tag->centre_px, guidance_config_.patch_half_px,
+                                                       depth_min_m_, depth_max_m_);
+    }
+    out.command = guidance_.update(in.estimate, detection);
+    ++reasons_[std::string(planning::to_string(out.command.reason))];
+    return out;
+  }
+
+  nlohmann::ordered_json summary() const override {
+    nlohmann::ordered_json r = nlohmann::ordered_json::object();
+    for (const auto& [name, n] : reasons_) r[name] = n;
+    return {{"tag_family", detector_config_.family}, {"tag_id", tag_id_}, {"frames_detected", detected_}, {"reasons", r}};
+  }
+
+ private:
+  planning::AprilTagDetectorConfig detector_config_;
+  planning::HandGuidanceConfig guidance_config_;
+  int tag_id_;
+  std::unique_ptr<CameraModel> camera_;
+  planning::AprilTagDetector detector_;
+  planning::HandGuidance guidance_;
+  double depth_min_m_, depth_max_m_;
+  std::size_t detected_ = 0;
+  std::map<std::string, std::size_t> reasons_;
+};
+
+}  // namespace
+
+std::unique_ptr<GuidanceStage> make_hand_target_stage(const GuidanceStageContext& context) {
+  return std::make_unique<HandTargetStage>(context);
+}
+
+}  // namespace navaid::experiments

@@ -1,0 +1,95 @@
+// The Smart Cane's chain (seed smart-cane, §III-D / §IV): toward a goal, the walking-path generator
+// re-plans on the newest ESDF at 10 Hz inside the 10 m sensing range, the path is followed with the
+// 2 m look-ahead and the PI heading controller (eq. 1) turns the heading error into the steering
+// wheel's command. The goal is given in the frame of the pose where guidance starts (the first
+// localised estimate): forward and left in metres; a simulated recording's default is the end of
+// its path, seen from the true pose at that moment.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/experiments/map_session.hpp"
+#include "navaid/planning/smart_cane_guidance.hpp"
+
+namespace navaid::experiments {
+namespace {
+
+using mapping::Vec2;
+
+class WalkingPathStage final : public GuidanceStage {
+ public:
+  explicit WalkingPathStage(const GuidanceStageContext& c)
+      : guidance_(planning::read_smart_cane_guidance_config(c.config)), goal_start_frame_(c.spec.goal_start_frame_m) {
+    if (!goal_start_frame_) {
+      const auto scenario = recording_scenario(c.recording_dir);
+      if (!scenario || c.recording.groundtruth.empty())
+        throw Error(c.recording_dir.string() + ": device " + c.spec.name +
+                    " needs a goal: set device.goal_start_frame_m=FORWARD,LEFT");
+      path_end_W_ = scenario->path.back();
+      groundtruth_ = c.recording.groundtruth;
+    }
+  }
+
+  GuidanceOutput update(const GuidanceInput& in) override {
+    GuidanceOutput out;
+    out.planner = "wpg";
+    const StateEstimate& e = in.estimate;
+    const bool localised = e.mode != EstimatorMode::kInitializing && e.mode != EstimatorMode::kLost;
+    if (!goal_W_ && localised) goal_W_ = anchor_goal(e);
+    if (!goal_W_ || !in.maps) {
+      // PathGuidance says "locating" for an unsure estimate; before the goal or the map exist the
+      // cane says the same.
+      out.command = waiting_command(e.t, planning::GuidanceReason::kLocating,
+                                    goal_W_ ? "no local map yet" : fmt::format("estimator {}", to_string(e.mode)));
+      return out;
+    }
+    const std::size_t plans_before = guidance_.chain().stats().plans;
+    planning::Subgoal subgoal;
+    subgoal.goal_W = *goal_W_;
+    out.command = guidance_.update(e, in.maps->cost, in.maps->esdf, subgoal);
+    if (guidance_.chain().stats().plans > plans_before && guidance_.chain().plan())
+      out.new_plan = *guidance_.chain().plan();
+    return out;
+  }
+
+  nlohmann::ordered_json summary() const override {
+    const auto& s = guidance_.chain().stats();
+    nlohmann::ordered_json j = {{"planner", "wpg"}, {"updates", s.updates}, {"plans", s.plans},
+                                {"plans_failed", s.plans_failed}, {"withheld", s.locating}, {"blocked", s.blocked}};
+    if (goal_W_) j["goal_W"] = {goal_W_->x(), goal_W_->y()};
+    return j;
+  }
+
+ private:
+  /// The goal in W from the first localised estimate: forward / left of its pose.
+  Vec2 anchor_goal(const StateEstimate& e) const {
+    Vec2 rel;
+    if (goal_start_frame_) {
+      rel = Vec2(goal_start_frame_->first, goal_start_frame_->second);
+    } else {
+      // The path's end from the true pose at this moment, in that pose's (yaw-only) frame.
+      const auto it = std::lower_bound(groundtruth_.begin(), groundtruth_.end(), e.t,
+                                       [](const GroundTruthState& g, Timestamp t) { return g.t < t; });
+      const GroundTruthState& g = it == groundtruth_.end() ? groundtruth_.back() : *it;
+      const double yaw = planning::body_yaw(g.T_W_B);
+      rel = Eigen::Rotation2Dd(-yaw) * (path_end_W_ - g.T_W_B.t.head<2>());
+    }
+    return e.T_W_B.t.head<2>() + Eigen::Rotation2Dd(planning::body_yaw(e.T_W_B)) * rel;
+  }
+
+  planning::SmartCaneGuidance guidance_;
+  std::optional<std::pair<double, double>> goal_start_frame_;
+  Vec2 path_end_W_ = Vec2::Zero();
+  std::vector<GroundTruthState> groundtruth_;
+  std::optional<Vec2> goal_W_;
+};
+
+}  // namespace
+
+std::unique_ptr<GuidanceStage> make_walking_path_stage(const GuidanceStageContext& context) {
+  return std::make_unique<WalkingPathStage>(context);
+}
+
+}  // namespace navaid::experiments
