@@ -17,6 +17,7 @@
 #include "navaid/interaction/cue_session.hpp"
 #include "navaid/interaction/cue_timeline_csv.hpp"
 #include "navaid/interaction/device_link.hpp"
+#include "navaid/interaction/speech_mix.hpp"
 #include "navaid/interaction/synthesized_speech.hpp"
 #include "navaid/interaction/wav_file.hpp"
 
@@ -40,31 +41,6 @@ struct CuesArgs {
   std::string port;
   double speed = 1.0;
 };
-
-/// Everything spoken from `t0` on, each message at its start and cut where it was interrupted.
-AudioBuffer mix_speech(const std::vector<CueEvent>& events, const SynthesizedSpeech& speech, Timestamp t0) {
-  AudioBuffer mix;
-  mix.sample_rate_hz = speech.sample_rate_hz();
-  const std::size_t rate = static_cast<std::size_t>(mix.sample_rate_hz);
-  for (std::size_t i = 0; i < events.size(); ++i) {
-    const CueEvent& e = events[i];
-    if (e.outcome != CueOutcome::kSpoken || e.t < t0) continue;
-    AudioBuffer audio = speech.audio(e.text);
-    for (std::size_t j = i + 1; j < events.size(); ++j) {
-      const CueEvent& end = events[j];
-      if (end.channel == CueChannel::kSpeech &&
-          (end.outcome == CueOutcome::kInterrupted || end.outcome == CueOutcome::kFinished)) {
-        const auto keep = static_cast<std::size_t>(ns_to_seconds(end.t - e.t) * mix.sample_rate_hz);
-        if (audio.samples.size() > keep) audio.samples.resize(keep);
-        break;
-      }
-    }
-    const auto start = static_cast<std::size_t>(ns_to_seconds(e.t - t0) * static_cast<double>(rate));
-    if (mix.samples.size() < start + audio.samples.size()) mix.samples.resize(start + audio.samples.size(), 0);
-    std::copy(audio.samples.begin(), audio.samples.end(), mix.samples.begin() + static_cast<std::ptrdiff_t>(start));
-  }
-  return mix;
-}
 
 /// The timelines of all files on one clock: by time, a tie in the order the files were given.
 std::vector<GuidanceTimelineEntry> merged_timeline(const std::vector<std::filesystem::path>& files) {
@@ -148,7 +124,7 @@ void run(const CuesArgs& a) {
   }
   double speech_s = 0.0;
   if (speech && !speech_config.text_only) {
-    const AudioBuffer mix = mix_speech(events, *speech, timeline.empty() ? 0 : entry_time(timeline.front()));
+    const AudioBuffer mix = mix_spoken_audio(events, *speech, timeline.empty() ? 0 : entry_time(timeline.front()));
     write_wav(a.out / "speech.wav", mix);
     speech_s = mix.duration_s();
   }

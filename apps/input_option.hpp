@@ -26,14 +26,6 @@ struct InputOption {
   }
 };
 
-/// A navaid, EuRoC or TUM RGB-D recording (the kinds with camera frames); IoError naming the path
-/// and saying it is not "a recording with <what>" for any other input.
-inline io::Recording read_camera_recording(const std::filesystem::path& path, const std::string& what) {
-  const io::InputKind kind = io::detect_input(path);
-  if (kind != io::InputKind::kNavaidRecording && kind != io::InputKind::kEuroc && kind != io::InputKind::kTumRgbd)
-    throw IoError(path.string(), "is a " + std::string(io::to_string(kind)) + ", not a recording with " + what +
-                                     " (navaid, EuRoC or TUM RGB-D)");
-  return io::read_input(path, kind);
-}
+using io::read_camera_recording;
 
 }  // namespace navaid::cli

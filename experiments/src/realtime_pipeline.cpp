@@ -314,7 +314,9 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
         r.stages = stages.at(i);  // one per estimate
         r.estimator_ms = pending_ms / static_cast<double>(out.size());
         r.ms = *r.estimator_ms;
+        Clock::time_point arrival = now;
         if (const auto it = in_flight.find(e.t); it != in_flight.end()) {
+          arrival = it->second.arrival;
           r.frontend = it->second.frontend;
           if (r.frontend) r.ms += r.frontend->track_ms + r.frontend->load_ms;
           r.latency_ms = std::chrono::duration<double, std::milli>(now - it->second.arrival).count();
@@ -324,7 +326,7 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
         if (r.latency_ms) latency_ms.push_back(*r.latency_ms);
         r.estimate = std::move(e);
         result.frames.push_back(std::move(r));
-        if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
+        if (in.on_estimate) in.on_estimate(result.frames.back().estimate, arrival);
       }
       pending_ms = 0;
       progress.update(result.frames.size());
@@ -337,7 +339,7 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
     if (const auto it = in_flight.find(e.t); it != in_flight.end()) r.frontend = it->second.frontend;
     r.estimate = std::move(e);
     result.frames.push_back(std::move(r));
-    if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
+    if (in.on_estimate) in.on_estimate(result.frames.back().estimate, Clock::now());
   }
   progress.finish();
   result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();

@@ -25,9 +25,13 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
   io::SensorEventStream stream(in.recording);
   Progress progress(in.source ? "tracking and estimating" : "estimating", in.camera_frames);
   double pending_ms = 0;
+  // When the event that completed the pending estimates arrived: a camera frame's, for the
+  // frame-to-cue latency (its loading and tracking count).
+  Clock::time_point pending_arrival = run_start;
   while (auto event = stream.next()) {
     if (!in.source && std::holds_alternative<RgbdFrame>(*event)) continue;  // the features stand for the images
     const auto start = Clock::now();
+    if (std::holds_alternative<RgbdFrame>(*event) || std::holds_alternative<FeatureFrame>(*event)) pending_arrival = start;
     std::optional<SensorEvent> input_event = std::move(event);
     if (in.source) {
       const bool is_frame = std::holds_alternative<RgbdFrame>(*input_event);
@@ -52,7 +56,7 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
       r.frontend = take_frontend_time(e.t);
       r.estimate = std::move(e);
       result.frames.push_back(std::move(r));
-      if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
+      if (in.on_estimate) in.on_estimate(result.frames.back().estimate, pending_arrival);
     }
     pending_ms = 0;
     progress.update(result.frames.size());
@@ -62,7 +66,7 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
     r.frontend = take_frontend_time(e.t);
     r.estimate = std::move(e);
     result.frames.push_back(std::move(r));
-    if (in.on_estimate) in.on_estimate(result.frames.back().estimate);
+    if (in.on_estimate) in.on_estimate(result.frames.back().estimate, Clock::now());
   }
   progress.finish();
   result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();

@@ -119,4 +119,12 @@ Recording read_input(const fs::path& path, std::optional<InputKind> kind) {
   throw IoError(path.string(), "is a folder of several captures or trajectories; read its members one by one");
 }
 
+Recording read_camera_recording(const std::filesystem::path& path, const std::string& what) {
+  const InputKind kind = detect_input(path);
+  if (kind != InputKind::kNavaidRecording && kind != InputKind::kEuroc && kind != InputKind::kTumRgbd)
+    throw IoError(path.string(), "is a " + std::string(to_string(kind)) + ", not a recording with " + what +
+                                     " (navaid, EuRoC or TUM RGB-D)");
+  return read_input(path, kind);
+}
+
 }  // namespace navaid::io

@@ -4,6 +4,7 @@
 // estimator on their own threads (realtime_pipeline.cpp, --realtime). Both give one FrameRecord
 // per estimate, in output order.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -44,8 +45,10 @@ struct PipelineInput {
   bool imu_prediction = false;  ///< the front end's KLT prediction uses the back end's gyro bias
   std::size_t camera_frames = 0;  ///< for the progress bar
   /// Called with every estimate as it is made (replay: in order on the one thread; real time: on
-  /// the estimator's thread, after the estimate's latency is taken), e.g. to map as the run goes.
-  std::function<void(const StateEstimate&)> on_estimate;
+  /// the estimator's thread, after the estimate's latency is taken), e.g. to map as the run goes,
+  /// with the wall-clock time the estimate's camera frame arrived (its loading and tracking
+  /// included).
+  std::function<void(const StateEstimate&, std::chrono::steady_clock::time_point)> on_estimate;
 };
 
 struct RealtimeOptions {
@@ -86,6 +89,17 @@ inline double percentile(std::vector<double> v, double p) {
   const auto lo = static_cast<std::size_t>(std::floor(idx));
   const auto hi = std::min(lo + 1, v.size() - 1);
   return v[lo] + (idx - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+/// One stage's cost over a run: median, p99 and max per frame [ms], the total [s] and the count.
+inline nlohmann::ordered_json stage_distribution(const std::vector<double>& ms) {
+  double total = 0;
+  for (double v : ms) total += v;
+  return {{"median_ms", percentile(ms, 0.5)},
+          {"p99_ms", percentile(ms, 0.99)},
+          {"max_ms", ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end())},
+          {"total_s", total / 1000.0},
+          {"frames", ms.size()}};
 }
 
 }  // namespace navaid::experiments

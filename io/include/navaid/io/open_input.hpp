@@ -33,4 +33,8 @@ std::vector<std::filesystem::path> collection_members(const std::filesystem::pat
 /// Reads a single recording (not a collection) of the detected or forced kind.
 Recording read_input(const std::filesystem::path& path, std::optional<InputKind> kind = std::nullopt);
 
+/// A navaid, EuRoC or TUM RGB-D recording (the kinds with camera frames); IoError naming the path
+/// and saying it is not "a recording with <what>" for any other input.
+Recording read_camera_recording(const std::filesystem::path& path, const std::string& what);
+
 }  // namespace navaid::io

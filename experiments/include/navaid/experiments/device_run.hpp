@@ -1,0 +1,62 @@
+#pragma once
+// The device half of a full-device run: every estimate the estimator makes goes through mapping
+// (the map session: semantic voxel map, 2D layers, ESDF, obstacle scan), the device's guidance
+// stage and the cue session (generator -> scheduler -> actuator adapter, speech), and what each
+// stage did and cost is kept. In replay it runs on the estimator's thread; with `realtime` on a
+// thread of its own behind a bounded queue (the oldest estimate is dropped, counted, when the
+// queue is full). Writes, into the run folder: map/, plans.csv, guidance_timeline.csv (the input
+// of navaid cues), cues.csv, cues.png, speech.wav, device_stages.csv and latency.csv
+// (docs/full-device-runs.md).
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "navaid/core/config.hpp"
+#include "navaid/core/state_estimate.hpp"
+#include "navaid/experiments/device_preset.hpp"
+#include "navaid/experiments/map_session.hpp"
+#include "navaid/io/recording.hpp"
+
+namespace navaid::experiments {
+
+struct DeviceRunOptions {
+  bool realtime = false;
+  std::size_t queue_capacity = 8;  ///< estimates waiting for the device thread (realtime)
+  bool figures = true;             ///< cues.png
+};
+
+class DeviceRun {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Reads the device's keys of `config` (mapping.*, planning.*, interaction.*, device.*) before
+  /// the caller rejects unknown keys; creates `out`.
+  DeviceRun(const DeviceSpec& spec, const Config& config, const io::Recording& recording,
+            const std::filesystem::path& recording_dir, const CameraCalibration& camera,
+            const std::filesystem::path& out, const MapSessionOptions& map_options, const DeviceRunOptions& options);
+  ~DeviceRun();
+  DeviceRun(const DeviceRun&) = delete;
+  DeviceRun& operator=(const DeviceRun&) = delete;
+
+  /// One estimate, with the wall-clock time its sensor frame arrived (for the frame-to-cue latency).
+  /// Estimates without a frame of the device's camera are counted and skipped. Replay: an error of
+  /// a stage is thrown here as navaid::Error naming the stage and the frame; real time: by finish().
+  void on_estimate(const StateEstimate& estimate, Clock::time_point arrival);
+
+  /// Waits for the device thread, lets the cues run out, writes the files; returns the summary
+  /// (stages, latency, cues, plans, map). Rethrows a stage's error after writing what there is.
+  nlohmann::ordered_json finish();
+
+  /// The device stages' cost of one frame [ms] by its time (mapping, planning, interaction).
+  struct StageTimes {
+    double mapping_ms = 0, planning_ms = 0, interaction_ms = 0;
+  };
+  const std::map<Timestamp, StageTimes>& stage_times() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace navaid::experiments

@@ -1,0 +1,27 @@
+#pragma once
+// One run of navaid on a recording, as `navaid run` does it, for every caller: the estimator
+// (replay or real time) and, when the configuration names a device (device.*), the whole device:
+// mapping, guidance, cues, speech, the stage timing, the frame-to-cue latency and report.html.
+#include <filesystem>
+#include <string>
+
+#include "navaid/core/config.hpp"
+#include "navaid/experiments/estimator_pipeline.hpp"
+
+namespace navaid::experiments {
+
+struct RecordingRunOptions {
+  std::filesystem::path recording, out;
+  Config config;  ///< estimator.*, frontend.*, mapping.*, and for a device device.*, planning.*, interaction.*
+  bool realtime = false;
+  RealtimeOptions realtime_options;
+  std::size_t device_queue = 8;  ///< real time: estimates that may wait for the device thread
+  bool plot = true;              ///< topview.png, cues.png, report.html
+};
+
+/// Runs and writes the run folder; returns the one-line summary for the console. Throws
+/// UsageError / ConfigError / IoError / Error with the file, key, stage or frame named; a stage
+/// that fails mid-run leaves everything written so far in the run folder (error.txt says what).
+std::string run_recording(const RecordingRunOptions& options);
+
+}  // namespace navaid::experiments

@@ -1,0 +1,524 @@
+// navaid run's work, for every caller (the command, the trials, the reproductions, the tests): the
+// sliding-window estimator on a recording, from its feature observations or, when it has none,
+// from its images through the front end, replayed on one thread or in real time
+// (estimator_pipeline.hpp); with a device (device.* keys, device_preset.hpp) every estimate also
+// goes through mapping, the device's guidance and its cues (device_run.hpp). Writes the run
+// folder (docs/estimator.md "navaid run", docs/full-device-runs.md).
+#include "navaid/experiments/recording_run.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "navaid/core/config.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/estimation/frontend/image_feature_source.hpp"
+#include "navaid/estimation/sliding_window_estimator.hpp"
+#include "navaid/experiments/absolute_trajectory_error.hpp"
+#include "navaid/experiments/enu_position_error.hpp"
+#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/io/image_io.hpp"
+#include "navaid/io/open_input.hpp"
+#include "navaid/io/tum_trajectory.hpp"
+#include "navaid/experiments/map_session.hpp"
+#include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/experiments/run_topview.hpp"
+
+#include "navaid/experiments/device_run.hpp"
+#include "navaid/experiments/figure_script.hpp"
+#include "navaid/mapping/segmentation_link.hpp"
+
+namespace navaid::experiments {
+
+namespace {
+
+struct AteSummary {
+  double rmse_m = 0;
+  double path_length_m = 0;
+  std::size_t poses = 0;
+  Similarity W_to_groundtruth;
+};
+
+/// ATE RMSE of the estimated positions after the 4-DOF (position + yaw) alignment onto ground
+/// truth (compute_ate): roll and pitch are observable through gravity, the rest of
+/// the estimator's W frame is arbitrary. Initializing frames carry no estimate and are left out.
+std::optional<AteSummary> ate_4dof(const std::vector<io::StampedPose>& trajectory,
+                                   const std::vector<GroundTruthState>& groundtruth) {
+  std::vector<io::StampedPose> gt;
+  gt.reserve(groundtruth.size());
+  for (const auto& g : groundtruth) gt.push_back({g.t, g.T_W_B});
+  const auto pairs = associate_poses(trajectory, gt);
+  if (pairs.size() < 3) return std::nullopt;
+  const auto ate = compute_ate(pairs, {AlignmentMode::kPosYaw, 0});
+  AteSummary r;
+  r.rmse_m = ate.position.rmse;
+  r.poses = pairs.size();
+  r.W_to_groundtruth = ate.transform;
+  for (std::size_t i = 1; i < pairs.size(); ++i) r.path_length_m += (pairs[i].gt.t - pairs[i - 1].gt.t).norm();
+  return r;
+}
+
+void write_estimates_csv(const std::filesystem::path& file, const std::vector<StateEstimate>& estimates) {
+  std::ofstream out(file);
+  if (!out) throw IoError(file.string(), "cannot write");
+  out << "t_ns,px,py,pz,qw,qx,qy,qz,vx,vy,vz,bgx,bgy,bgz,bax,bay,baz,mode,"
+         "cov_pxx,cov_pxy,cov_pxz,cov_pyy,cov_pyz,cov_pzz,cov_rxx,cov_rxy,cov_rxz,cov_ryy,cov_ryz,cov_rzz,"
+         "enu_yaw,enu_x,enu_y,enu_z\n";
+  for (const auto& s : estimates) {
+    const auto& P = s.covariance;
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", s.t, s.T_W_B.t.x(), s.T_W_B.t.y(),
+                       s.T_W_B.t.z(), s.T_W_B.q.w(), s.T_W_B.q.x(), s.T_W_B.q.y(), s.T_W_B.q.z(), s.v_W.x(), s.v_W.y(),
+                       s.v_W.z(), s.b_g.x(), s.b_g.y(), s.b_g.z(), s.b_a.x(), s.b_a.y(), s.b_a.z(), to_string(s.mode));
+    for (int base : {3, 0})  // position block, then rotation block (StateEstimate order: rotation first)
+      for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) out << fmt::format(",{}", P(base + i, base + j));
+    if (s.T_ENU_W) {
+      out << fmt::format(",{},{},{},{}", yaw_of(s.T_ENU_W->q), s.T_ENU_W->t.x(), s.T_ENU_W->t.y(), s.T_ENU_W->t.z());
+    } else {
+      out << ",,,,";
+    }
+    out << "\n";
+  }
+}
+
+// Where the estimator's features come from.
+enum class Input { kFeatures, kImages };
+
+
+// Intensity and depth only: labels and confidence are not the estimator's business.
+void load_tracking_images(RgbdFrame& frame) {
+  if (frame.intensity_path.empty())
+    throw IoError(frame.camera, "frame " + std::to_string(frame.index) + " at " + std::to_string(frame.t) +
+                                    " ns has no intensity image");
+  frame.intensity = io::read_intensity_image(frame.intensity_path);
+  if (!frame.depth_path.empty()) frame.depth = io::read_depth_png(frame.depth_path, frame.depth_png_scale_m);
+}
+
+/// The estimator's half of a frame's cost: camera input (loading + tracking) and the back end.
+double frontend_ms(const FrameRecord& r) { return r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0; }
+double estimator_ms_of(const FrameRecord& r) { return r.estimator_ms ? *r.estimator_ms : r.ms - frontend_ms(r); }
+
+/// stages.csv: every stage's cost per frame (the device's stages empty where it skipped a frame).
+void write_stage_csv(const std::filesystem::path& file, const std::vector<FrameRecord>& frames,
+                     const std::map<Timestamp, DeviceRun::StageTimes>& device) {
+  std::ofstream out(file);
+  if (!out) throw IoError(file.string(), "cannot write");
+  out << "t_ns,frontend_ms,estimator_ms,mapping_ms,planning_ms,interaction_ms\n";
+  for (const auto& r : frames) {
+    out << fmt::format("{},{},{:.4f}", r.estimate.t, r.frontend ? fmt::format("{:.4f}", frontend_ms(r)) : "",
+                       estimator_ms_of(r));
+    if (const auto it = device.find(r.estimate.t); it != device.end()) {
+      out << fmt::format(",{:.4f},{:.4f},{:.4f}\n", it->second.mapping_ms, it->second.planning_ms,
+                         it->second.interaction_ms);
+    } else {
+      out << ",,,\n";
+    }
+  }
+}
+
+nlohmann::ordered_json stage_summary(const std::vector<FrameRecord>& frames) {
+  std::vector<double> fe, est;
+  for (const auto& r : frames) {
+    if (r.frontend) fe.push_back(frontend_ms(r));
+    est.push_back(estimator_ms_of(r));
+  }
+  nlohmann::ordered_json j;
+  j["frontend"] = stage_distribution(fe);
+  j["estimator"] = stage_distribution(est);
+  return j;
+}
+
+double stage_total_s(const nlohmann::ordered_json& stages) {
+  double total = 0;
+  for (const auto& [name, s] : stages.items()) total += s["total_s"].get<double>();
+  return total;
+}
+
+}  // namespace
+
+std::string run_recording(const RecordingRunOptions& a) {
+  if (a.recording.empty()) throw UsageError("--recording is required");
+  if (a.out.empty()) throw UsageError("--out is required");
+  if (a.realtime) validate(a.realtime_options);
+  const Config& config = a.config;
+  estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
+  const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
+  const std::optional<DeviceSpec> device =
+      config.has("device.name") ? std::optional<DeviceSpec>(read_device_spec(config)) : std::nullopt;
+  // A device maps as its own stage (device_run.hpp); mapping.enabled maps without one.
+  const bool mapping_enabled = !device && config.get_bool("mapping.enabled", false);
+  if (device) config.get_bool("mapping.enabled", true);  // read: a preset may say so
+  const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
+  MapSessionOptions map_options{1.0, 5.0, true, 0};
+  read_obstacle_options(config, map_options);
+  map_options.network = mapping::read_segmentation_link_config(config);
+  if (!device) config.reject_unknown_keys();  // a device's stages read theirs once the recording is known
+  if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
+    spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "
+                 "weight: it diverged on 4 of 20 Monte-Carlo seeds of lab-walk-1 (docs/estimator.md, Consistency); "
+                 "use leaving_anchor=reanchor for Gaussian studies");
+
+  const io::Recording recording = io::read_camera_recording(a.recording, "IMU and camera data");
+  if (recording.imu.empty()) throw Error(a.recording.string() + ": no IMU data; the estimator needs an IMU");
+  if (std::any_of(recording.imu.begin(), recording.imu.end(), [](const ImuSample& s) { return !s.has_gyro; }))
+    throw Error(a.recording.string() + ": IMU samples without gyro data (accelerometer only, as TUM RGB-D); the " +
+                "estimator needs a gyro");
+  if (recording.calibration.cameras.empty())
+    throw Error(a.recording.string() + ": no camera in the calibration; the estimator needs one");
+  // The estimator's camera (its default: the rig's first); the front end tracks the same one.
+  const std::string camera = recording.calibration.cameras.front().name;
+  if (device) {
+    const std::vector<std::string> missing = missing_for_device(*device, recording, a.recording);
+    if (!missing.empty())
+      throw Error(fmt::format("{}: cannot serve device {}: it lacks {}", a.recording.string(), device->name,
+                              fmt::join(missing, "; ")));
+  }
+  const Input input = recording.features.empty() ? Input::kImages : Input::kFeatures;
+  std::size_t camera_frames = 0;
+  bool any_depth = false;
+  if (input == Input::kFeatures) {
+    for (const auto& f : recording.features) camera_frames += f.camera == camera;
+  } else {
+    for (const auto& f : recording.frames)
+      if (f.camera == camera) {
+        ++camera_frames;
+        any_depth = any_depth || f.has_depth();
+      }
+    if (recording.frames.empty())
+      throw Error(a.recording.string() +
+                  ": no camera data: neither feature observations (features.csv) nor image frames; the estimator "
+                  "needs one of them");
+    if (camera_frames == 0)
+      throw Error(a.recording.string() + ": no image frames of camera '" + camera + "', the estimator's camera");
+    if (!any_depth && est_config.use_depth) {
+      // Nothing to measure depth with: VIO (the back end would otherwise ask for a depth noise model).
+      spdlog::info("{}: no depth images: running as VIO", a.recording.string());
+      est_config.use_depth = false;
+    }
+  }
+
+  estimation::SlidingWindowEstimator estimator(recording.calibration, est_config, camera, recording.origin);
+  std::optional<estimation::ImageFeatureSource> source;
+  if (input == Input::kImages) {
+    // Replay is deterministic only with OpenCV's parallel loops off (they change the tracks' last bits).
+    estimation::set_opencv_threads(1);
+    source.emplace(recording.calibration, frontend_config, camera, &load_tracking_images);
+  }
+  std::filesystem::create_directories(a.out);
+
+  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}};
+  if (source) {
+    pipeline_input.source = &*source;
+    pipeline_input.load_images = &load_tracking_images;
+    pipeline_input.imu_prediction = frontend_config.imu_prediction;
+  }
+  // mapping.enabled: the map is built as the estimates come (map/, the same folder navaid map writes).
+  std::optional<MapSession> map_session;
+  std::map<Timestamp, const RgbdFrame*> frame_at;
+  if (mapping_enabled) {
+    if (!any_depth)
+      throw Error(a.recording.string() + ": mapping.enabled=true needs RGB-D frames with depth; this recording has " +
+                  (input == Input::kFeatures ? "feature observations" : "no depth images"));
+    const auto& cams = recording.calibration.cameras;
+    const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
+    map_options.frames_total = camera_frames;
+    map_options.align_to = groundtruth_poses(recording);
+    map_session.emplace(mapper_config, *cam, a.recording, a.out / "map", map_options);
+    for (const auto& f : recording.frames)
+      if (f.camera == camera) frame_at[f.t] = &f;
+    pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point) {
+      if (const auto it = frame_at.find(e.t); it != frame_at.end()) map_session->add(*it->second, e);
+    };
+  }
+  std::unique_ptr<DeviceRun> device_run;
+  std::vector<StateEstimate> seen;  // what the run made, kept for the files when a stage fails
+  if (device) {
+    const auto& cams = recording.calibration.cameras;
+    const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
+    map_options.frames_total = camera_frames;
+    map_options.align_to = groundtruth_poses(recording);
+    map_options.network_start = recording_start(recording);
+    DeviceRunOptions device_options;
+    device_options.realtime = a.realtime;
+    device_options.queue_capacity = a.device_queue;
+    device_options.figures = a.plot;
+    device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,
+                                             device_options);
+    config.reject_unknown_keys();
+    pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point arrival) {
+      seen.push_back(e);
+      device_run->on_estimate(e, arrival);
+    };
+  }
+  PipelineResult result;
+  try {
+    result = a.realtime ? realtime_pipeline(pipeline_input, a.realtime_options) : replay_pipeline(pipeline_input);
+  } catch (const std::exception& e) {
+    if (!device_run) throw;
+    // A stage failed: keep what the run made so far, and say where it stopped.
+    std::ofstream(a.out / "error.txt") << e.what() << "\n";
+    write_estimates_csv(a.out / "estimates.csv", seen);
+    try {
+      device_run->finish();
+    } catch (const std::exception& flush_error) {
+      spdlog::warn("while writing the run's outputs after the failure: {}", flush_error.what());
+    }
+    throw;
+  }
+  std::vector<StateEstimate> estimates;
+  std::vector<double> frame_ms, estimator_ms;
+  for (const auto& r : result.frames) {
+    estimates.push_back(r.estimate);
+    frame_ms.push_back(r.ms);
+    // Replay: what the frame cost beyond tracking and loading is the estimator's.
+    estimator_ms.push_back(estimator_ms_of(r));
+  }
+
+  std::vector<io::StampedPose> poses;
+  for (const auto& e : estimates)
+    if (e.mode != EstimatorMode::kInitializing) poses.push_back({e.t, e.T_W_B});
+  io::write_tum_trajectory(a.out / "trajectory.tum", poses);
+  write_estimates_csv(a.out / "estimates.csv", estimates);
+  {
+    std::ofstream timing(a.out / "timing.csv");
+    // frontend_ms and image_load_ms stay empty for feature-level input; --realtime adds the
+    // estimator thread's share and the latency from the frame's arrival to its estimate; the
+    // estimator's stages come last (docs/estimator.md, "navaid run").
+    timing << "t_ns,ms,mode,frontend_ms,image_load_ms" << (a.realtime ? ",estimator_ms,latency_ms" : "")
+           << ",keyframe,solve_ms,covariance_ms,marginalization_ms\n";
+    for (const auto& r : result.frames) {
+      timing << fmt::format("{},{:.4f},{}", r.estimate.t, r.ms, to_string(r.estimate.mode));
+      if (const auto& ft = r.frontend)
+        timing << fmt::format(",{:.4f},{:.4f}", ft->track_ms, ft->load_ms);
+      else
+        timing << ",,";
+      if (a.realtime) {
+        timing << (r.estimator_ms ? fmt::format(",{:.4f}", *r.estimator_ms) : std::string(","));
+        timing << (r.latency_ms ? fmt::format(",{:.4f}", *r.latency_ms) : std::string(","));
+      }
+      timing << fmt::format(",{:d},{:.4f},{:.4f},{:.4f}\n", r.stages.keyframe ? 1 : 0, r.stages.solve_ms,
+                            r.stages.covariance_ms, r.stages.marginalization_ms);
+    }
+  }
+  std::ofstream(a.out / "config.yaml") << config.dump();
+
+  const auto& st = estimator.statistics();
+  nlohmann::ordered_json j;
+  j["recording"] = a.recording.string();
+  j["input"] = input == Input::kImages ? "images (front end)" : "features";
+  j["depth"] = est_config.use_depth;
+  j["frames"] = estimates.size();
+  j["keyframes"] = st.keyframes;
+  j["solves"] = st.solves;
+  j["solver_iterations"] = st.solver_iterations;
+  j["marginalizations"] = st.marginalizations;
+  j["marginalization_failures"] = st.marginalization_failures;
+  j["covariance_failures"] = st.covariance_failures;
+  j["initialization"] = {{"method", estimation::to_string(est_config.init_method)},
+                         {"attempts", st.initialization_attempts},
+                         {"failures", st.initialization_failures},
+                         {"last_failure", st.last_initialization_failure}};
+  if (st.failures > 0)
+    spdlog::warn("{} implausible solve(s): {} window restart(s) in the same map frame, {} re-initialization(s) in a "
+                 "new map frame (last: {})",
+                 st.failures, st.restarts, st.map_frame_resets, st.last_failure);
+  if (st.map_frame_resets > 0)
+    spdlog::warn("the map frame W was reset: the ATE aligns the whole run at once and so also measures the jump");
+  j["failures"] = {{"detection", est_config.failure_detection},
+                   {"count", st.failures},
+                   {"restarts", st.restarts},
+                   {"map_frame_resets", st.map_frame_resets},
+                   {"last", st.last_failure}};
+  if (st.initialized_at_s >= 0 && !recording.imu.empty())
+    j["initialization"]["time_s"] = st.initialized_at_s - ns_to_seconds(recording.imu.front().t);
+  if (est_config.estimate_time_offset) j["camera_time_offset_s"] = estimator.camera_time_offset_s();
+  if (est_config.estimate_extrinsic) {
+    const SE3 T = estimator.camera_extrinsic();
+    j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},
+                                   {"q_wxyz", {T.q.w(), T.q.x(), T.q.y(), T.q.z()}}};
+  }
+  if (est_config.residual_diagnostics) {
+    nlohmann::ordered_json res = nlohmann::ordered_json::object();
+    for (const auto& [type, r] : st.residuals)
+      res[type] = {{"factors", r.factors},
+                   {"rows", r.rows},
+                   {"chi2_per_row", r.rows ? r.squared_sum / static_cast<double>(r.rows) : 0.0},
+                   {"fraction_beyond_3_sigma_rms",
+                    r.factors ? static_cast<double>(r.beyond_3_sigma_rms) / static_cast<double>(r.factors) : 0.0}};
+    j["residuals"] = res;
+  }
+  std::map<std::string, std::size_t> modes;
+  for (const auto& e : estimates) ++modes[std::string(to_string(e.mode))];
+  nlohmann::ordered_json fractions = nlohmann::ordered_json::object();
+  for (auto m : {EstimatorMode::kInitializing, EstimatorMode::kRgbdVio, EstimatorMode::kVio, EstimatorMode::kImuOnly,
+                 EstimatorMode::kLost}) {
+    const std::string name(to_string(m));
+    fractions[name] = estimates.empty() ? 0.0 : static_cast<double>(modes[name]) / static_cast<double>(estimates.size());
+  }
+  j["mode_fractions"] = fractions;
+  if (map_session) {
+    const auto m = map_session->finish({{"recording", std::filesystem::absolute(a.recording).string()},
+                                        {"poses", "the estimator's, as the run went"}});
+    j["mapping"] = {{"folder", "map"}, {"frames", m["frames"]}, {"time_per_mapped_frame_ms", m["time_per_mapped_frame_ms"]}};
+    if (m.contains("quality")) j["mapping"]["quality"] = m["quality"]["occupancy"];
+  }
+  j["time_per_frame_ms"] = {{"median", percentile(frame_ms, 0.5)}, {"p99", percentile(frame_ms, 0.99)},
+                            {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())},
+                            {"estimator_median", percentile(estimator_ms, 0.5)},
+                            {"estimator_p99", percentile(estimator_ms, 0.99)}};
+  if (source) {
+    std::vector<double> track_ms, load_ms, live_ms;
+    for (const auto& r : result.frames)
+      if (r.frontend) {
+        track_ms.push_back(r.frontend->track_ms);
+        load_ms.push_back(r.frontend->load_ms);
+        live_ms.push_back(r.ms - r.frontend->load_ms);
+      }
+    auto& t = j["time_per_frame_ms"];
+    // What a camera handing over pixels would cost: the frame without decoding its PNGs.
+    t["without_image_load_median"] = percentile(live_ms, 0.5);
+    t["without_image_load_p99"] = percentile(live_ms, 0.99);
+    t["frontend_median"] = percentile(track_ms, 0.5);
+    t["frontend_p99"] = percentile(track_ms, 0.99);
+    t["image_load_median"] = percentile(load_ms, 0.5);
+    t["image_load_p99"] = percentile(load_ms, 0.99);
+    j["frontend"] = {{"frames_tracked", source->frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
+  }
+  std::string ate_text = "no ground truth";
+  const auto ate = ate_4dof(poses, recording.groundtruth);
+  if (ate) {
+    j["ate"] = {{"alignment", "posyaw (4-DOF: yaw + translation)"},
+                {"rmse_m", ate->rmse_m},
+                {"path_length_m", ate->path_length_m},
+                {"percent_of_path", ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0},
+                {"poses", ate->poses}};
+    ate_text = fmt::format("ATE {:.3f} m over {:.1f} m ({:.2f} %)", ate->rmse_m, ate->path_length_m,
+                           ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0);
+  }
+  {
+    // Consistency: NEES in the frame of the estimator's first state (the one its covariance grows
+    // from); averaged over this run's frames (correlated in time: indicative; average the values
+    // of independent seeds, e.g. with navaid ablate, for the chi-square test).
+    std::vector<io::StampedPose> gt;
+    for (const auto& g : recording.groundtruth) gt.push_back({g.t, g.T_W_B});
+    const auto aligned = align_to_first_state(estimates, gt);
+    if (!aligned.empty()) {
+      const auto nees = first_state_nees(aligned, gt);
+      j["nees"] = {{"frame", "first state (4-DOF: yaw + translation at the first estimate)"},
+                   {"position_mean", nees.position_summary.average},
+                   {"orientation_mean", nees.orientation_summary.average},
+                   {"position_fraction_within_95", nees.position_summary.fraction_inside},
+                   {"orientation_fraction_within_95", nees.orientation_summary.fraction_inside},
+                   {"poses", aligned.size()}};
+      ate_text += fmt::format("; mean NEES position {:.2f}, orientation {:.2f} (3 if consistent)",
+                              nees.position_summary.average, nees.orientation_summary.average);
+    }
+  }
+  if (est_config.use_gps) {
+    // The simulator's ground truth lives in ENU at the recording's origin (T_ENU_W = identity).
+    std::vector<io::StampedPose> enu;
+    for (const auto& e : estimates)
+      if (e.T_ENU_W && e.mode != EstimatorMode::kInitializing) enu.push_back({e.t, *e.T_ENU_W * e.T_W_B});
+    nlohmann::ordered_json g;
+    g["registered_frames"] = enu.size();
+    std::vector<io::StampedPose> gt;
+    for (const auto& s : recording.groundtruth) gt.push_back({s.t, s.T_W_B});
+    const auto error = enu_position_error(enu, gt);
+    if (error) {
+      g["first_registered_s"] = ns_to_seconds(enu.front().t - recording.imu.front().t);
+      g["enu_position_rmse_m"] = error->rmse_m;
+      g["enu_horizontal_rmse_m"] = error->horizontal_rmse_m;
+      g["enu_vertical_rmse_m"] = error->vertical_rmse_m;
+      g["enu_position_max_m"] = error->max_m;
+      g["note"] = "no alignment: ground truth taken as ENU at the recording's origin (simulator convention)";
+      // What the fixes allow: the true path registered to them (eq. 6-7), to all at once and causally.
+      std::vector<Timestamp> times;
+      for (const auto& p : enu) times.push_back(p.t);
+      estimation::GpsRegistrationOptions options;
+      options.error_correlation_time_s = est_config.gps_correlation_time_s;
+      const auto reference_json = [](const EnuPositionError& e, const char* note) {
+        return nlohmann::ordered_json{{"rmse_m", e.rmse_m},
+                                      {"horizontal_rmse_m", e.horizontal_rmse_m},
+                                      {"vertical_rmse_m", e.vertical_rmse_m},
+                                      {"frames", e.poses},
+                                      {"note", note}};
+      };
+      const Vec3& lever = recording.calibration.gps_lever_arm_B;
+      if (const auto r = rigid_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+        g["rigid_registration_reference"] =
+            reference_json(*r, "the ground truth registered to all fixes (4-DOF): the multipath averaged over the walk");
+      if (const auto r = causal_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+        g["causal_registration_reference"] = reference_json(
+            *r, "the ground truth registered to the fixes up to each frame (4-DOF), as a causal estimator sees them");
+    }
+    j["gps"] = g;
+  }
+  {
+    const double span_s = ns_to_seconds(recording.imu.back().t - recording.imu.front().t);
+    j["pipeline"] = {{"mode", a.realtime ? "realtime" : "replay"},
+                     {"wall_s", result.wall_s},
+                     {"recording_s", span_s},
+                     {"realtime_factor", result.wall_s > 0 ? span_s / result.wall_s : 0.0}};
+    if (a.realtime) j["realtime"] = result.realtime;
+  }
+  if (!!a.plot) {
+    // A figure is a convenience: failing to draw it does not fail the run.
+    try {
+      const std::string title =
+          ate ? fmt::format("{}: ATE {:.3f} m over {:.1f} m (4-DOF)", a.recording.filename().string(), ate->rmse_m,
+                            ate->path_length_m)
+              : a.recording.filename().string();
+      draw_run_topview(a.out, estimates, recording.groundtruth,
+                       ate ? std::optional<Similarity>(ate->W_to_groundtruth) : std::nullopt, title);
+    } catch (const std::exception& e) {
+      spdlog::warn("topview.png not drawn: {}", e.what());
+    }
+  }
+  std::string device_text;
+  if (device_run) {
+    nlohmann::ordered_json d = device_run->finish();
+    j["device"] = {{"name", device->name},
+                   {"guidance", std::string(to_string(device->guidance))},
+                   {"actuator", std::string(interaction::to_string(device->actuator))},
+                   {"speech", device->speech},
+                   {"map_every", device->map_every}};
+    write_stage_csv(a.out / "stages.csv", result.frames, device_run->stage_times());
+    nlohmann::ordered_json stages = stage_summary(result.frames);
+    for (auto& [name, value] : d["stages"].items()) stages[name] = value;
+    j["stages"] = stages;
+    for (const char* key : {"latency", "guidance", "plans", "cues", "estimates", "device_thread"})
+      if (d.contains(key)) j[key] = d[key];
+    j["mapping"] = d["mapping"];
+    const double span_s = j["pipeline"]["recording_s"].get<double>();
+    j["pipeline"]["stage_time_per_recording_s"] = span_s > 0 ? stage_total_s(j["stages"]) / span_s : 0.0;
+    device_text = fmt::format("; device {}: {} cues spoken, {} patterns sent, frame-to-cue latency p99 {:.1f} ms",
+                              device->name, d["cues"]["outcomes"]["spoken"].get<std::size_t>(),
+                              d["cues"]["outcomes"]["sent"].get<std::size_t>(), d["latency"]["p99_ms"].get<double>());
+  }
+  std::ofstream(a.out / "summary.json") << j.dump(2) << "\n";
+  if (device_run && a.plot) {
+    try {
+      run_figure_script("run_report.py", {a.out.string(), "--out", (a.out / "report.html").string()});
+    } catch (const std::exception& e) {
+      spdlog::warn("report.html not written: {}", e.what());
+    }
+  }
+  std::string frontend_text;
+  if (source)
+    frontend_text = fmt::format(" (front end {:.1f})", j["time_per_frame_ms"]["frontend_median"].get<double>());
+  return fmt::format(
+      "wrote {}: {} frames from {}, {} keyframes, {:.0f} % RGBD-VIO, {:.0f} % VIO, median {:.1f} ms/frame{}; {}\n",
+      a.out.string(), estimates.size(), input == Input::kImages ? "images" : "features", st.keyframes,
+      100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(), percentile(frame_ms, 0.5),
+      frontend_text, ate_text + device_text);
+}
+
+}  // namespace navaid::experiments
