@@ -50,7 +50,7 @@ DeviceSpec read_device_spec(const Config& config) {
       throw ConfigError(config.origin("device.needs"), "device.needs", "'" + need + "' is not depth or gps");
     }
   }
-  s.map_every = static_cast<std::size_t>(config.get_int("device.map_every", 1, 1, 100));
+  s.map_every = static_cast<std::size_t>(config.get_int("device.map_every", 1, 0, 100));
   if (config.has("device.route.osm")) s.route_osm = config.get_string("device.route.osm");
   s.route_to = optional_pair(config, "device.route.to", {-180.0, 180.0});
   s.goal_start_frame_m = optional_pair(config, "device.goal_start_frame_m", {-1000.0, 1000.0});

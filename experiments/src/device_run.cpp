@@ -82,7 +82,7 @@ struct DeviceRun::Impl {
     try {
       StageTimes times;
       auto t0 = Clock::now();
-      const bool map_this = estimates % spec.map_every == 0;
+      const bool map_this = spec.map_every > 0 && estimates % spec.map_every == 0;
       ++estimates;
       if (map_this) map.add(frame, e);
       auto t1 = Clock::now();
@@ -149,6 +149,7 @@ struct DeviceRun::Impl {
           if (queue.empty()) return;
           item = std::move(queue.front());
           queue.pop_front();
+          room.notify_one();
         }
         try {
           process(item.first, item.second);
@@ -157,6 +158,7 @@ struct DeviceRun::Impl {
           error = std::current_exception();
           closed = true;
           queue.clear();
+          room.notify_all();
           return;
         }
       }
@@ -164,8 +166,9 @@ struct DeviceRun::Impl {
   }
 
   void push(const StateEstimate& e, Clock::time_point arrival) {
-    std::lock_guard<std::mutex> lock(m);
-    if (error) return;  // reported by finish()
+    std::unique_lock<std::mutex> lock(m);
+    if (!options.drop_when_full) room.wait(lock, [&] { return error || queue.size() < options.queue_capacity; });
+    if (error) std::rethrow_exception(error);  // stops the estimator: the run ends at the failed stage
     if (queue.size() >= options.queue_capacity) {
       queue.pop_front();  // the newest estimate matters most to a walking user
       ++dropped;
@@ -205,7 +208,7 @@ struct DeviceRun::Impl {
 
   std::thread worker;
   std::mutex m;
-  std::condition_variable changed;
+  std::condition_variable changed, room;
   std::deque<std::pair<StateEstimate, Clock::time_point>> queue;
   bool closed = false;
   std::exception_ptr error;
@@ -217,13 +220,13 @@ DeviceRun::DeviceRun(const DeviceSpec& spec, const Config& config, const io::Rec
                      const std::filesystem::path& out, const MapSessionOptions& map_options,
                      const DeviceRunOptions& options)
     : impl_(std::make_unique<Impl>(spec, config, recording, recording_dir, camera, out, map_options, options)) {
-  if (options.realtime) impl_->start_thread();
+  if (options.threaded) impl_->start_thread();
 }
 
 DeviceRun::~DeviceRun() { impl_->stop_thread(); }
 
 void DeviceRun::on_estimate(const StateEstimate& estimate, Clock::time_point arrival) {
-  if (impl_->options.realtime) {
+  if (impl_->options.threaded) {
     impl_->push(estimate, arrival);
   } else {
     impl_->process(estimate, arrival);
@@ -264,8 +267,8 @@ nlohmann::ordered_json DeviceRun::finish() {
   j["cues"] = {{"timeline_entries", d.timeline.size()}, {"events", events.size()}, {"outcomes", counts},
                {"spoken", spoken}, {"speech_wav_s", speech_s}};
   j["estimates"] = {{"with_frame", d.estimates}, {"without_frame", d.without_frame}};
-  if (d.options.realtime)
-    j["device_thread"] = {{"queue_capacity", d.options.queue_capacity}, {"dropped", d.dropped}, {"max_depth", d.max_depth}};
+  if (d.options.threaded)
+    j["device_thread"] = {{"queue_capacity", d.options.queue_capacity}, {"when_full", d.options.drop_when_full ? "drop the oldest" : "wait"}, {"dropped", d.dropped}, {"max_depth", d.max_depth}};
   const auto m = d.map.finish({{"poses", "the estimator's, as the run went"}});
   j["mapping"] = {{"folder", "map"}, {"frames", m["frames"]}};
   if (m.contains("quality")) j["mapping"]["quality"] = m["quality"]["occupancy"];

@@ -102,6 +102,23 @@ void load_tracking_images(RgbdFrame& frame) {
   if (!frame.depth_path.empty()) frame.depth = io::read_depth_png(frame.depth_path, frame.depth_png_scale_m);
 }
 
+/// frontend.rate_hz: the estimator takes the camera's frames at this rate at most (as VINS-Mono's
+/// `freq`), the first one and then each one at least a period (less 5 %, for timestamp jitter)
+/// after the last one taken; the others are left out of the run.
+void thin_camera_frames(io::Recording& recording, const std::string& camera, double rate_hz) {
+  const auto period = static_cast<Timestamp>(0.95e9 / rate_hz);
+  std::optional<Timestamp> last;
+  std::vector<RgbdFrame> kept;
+  for (auto& f : recording.frames) {
+    if (f.camera == camera) {
+      if (last && f.t - *last < period) continue;
+      last = f.t;
+    }
+    kept.push_back(std::move(f));
+  }
+  recording.frames = std::move(kept);
+}
+
 /// The estimator's half of a frame's cost: camera input (loading + tracking) and the back end.
 double frontend_ms(const FrameRecord& r) { return r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0; }
 double estimator_ms_of(const FrameRecord& r) { return r.estimator_ms ? *r.estimator_ms : r.ms - frontend_ms(r); }
@@ -151,6 +168,7 @@ std::string run_recording(const RecordingRunOptions& a) {
   const Config& config = a.config;
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
+  const double camera_rate_hz = config.get_double("frontend.rate_hz", 0.0, {0.0, 1000.0});
   const std::optional<DeviceSpec> device =
       config.has("device.name") ? std::optional<DeviceSpec>(read_device_spec(config)) : std::nullopt;
   // A device maps as its own stage (device_run.hpp); mapping.enabled maps without one.
@@ -166,7 +184,7 @@ std::string run_recording(const RecordingRunOptions& a) {
                  "weight: it diverged on 4 of 20 Monte-Carlo seeds of lab-walk-1 (docs/estimator.md, Consistency); "
                  "use leaving_anchor=reanchor for Gaussian studies");
 
-  const io::Recording recording = io::read_camera_recording(a.recording, "IMU and camera data");
+  io::Recording recording = io::read_camera_recording(a.recording, "IMU and camera data");
   if (recording.imu.empty()) throw Error(a.recording.string() + ": no IMU data; the estimator needs an IMU");
   if (std::any_of(recording.imu.begin(), recording.imu.end(), [](const ImuSample& s) { return !s.has_gyro; }))
     throw Error(a.recording.string() + ": IMU samples without gyro data (accelerometer only, as TUM RGB-D); the " +
@@ -175,6 +193,7 @@ std::string run_recording(const RecordingRunOptions& a) {
     throw Error(a.recording.string() + ": no camera in the calibration; the estimator needs one");
   // The estimator's camera (its default: the rig's first); the front end tracks the same one.
   const std::string camera = recording.calibration.cameras.front().name;
+  if (camera_rate_hz > 0) thin_camera_frames(recording, camera, camera_rate_hz);
   if (device) {
     const std::vector<std::string> missing = missing_for_device(*device, recording, a.recording);
     if (!missing.empty())
@@ -247,7 +266,7 @@ std::string run_recording(const RecordingRunOptions& a) {
     map_options.align_to = groundtruth_poses(recording);
     map_options.network_start = recording_start(recording);
     DeviceRunOptions device_options;
-    device_options.realtime = a.realtime;
+    device_options.drop_when_full = a.realtime;
     device_options.queue_capacity = a.device_queue;
     device_options.figures = a.plot;
     device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,

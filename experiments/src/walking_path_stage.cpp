@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
@@ -46,8 +47,16 @@ class WalkingPathStage final : public GuidanceStage {
       return out;
     }
     const std::size_t plans_before = guidance_.chain().stats().plans;
+    // A goal beyond the local map (the 10 m sensing range) is a direction to walk in until it
+    // comes into range (the generator's horizon).
     planning::Subgoal subgoal;
-    subgoal.goal_W = *goal_W_;
+    const auto& geometry = in.maps->cost.geometry();
+    if (geometry.contains(geometry.cell_of(*goal_W_))) {
+      subgoal.goal_W = *goal_W_;
+    } else {
+      const Vec2 d = *goal_W_ - e.T_W_B.t.head<2>();
+      subgoal.direction_rad = std::atan2(d.y(), d.x());
+    }
     out.command = guidance_.update(e, in.maps->cost, in.maps->esdf, subgoal);
     if (guidance_.chain().stats().plans > plans_before && guidance_.chain().plan())
       out.new_plan = *guidance_.chain().plan();

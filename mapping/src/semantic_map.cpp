@@ -167,7 +167,7 @@ class TreeOpsT final : public TreeOps {
         n->setColor(rgb[0], rgb[1], rgb[2]);
       }
     }
-    color.updateInnerOccupancy();
+    if (color.size() > 0) color.updateInnerOccupancy();  // OctoMap 1.9 dereferences the missing root of an empty tree
     if (!color.write(file.string())) throw IoError(file.string(), "cannot write the colour OctoMap");
   }
 

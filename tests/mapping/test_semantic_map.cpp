@@ -218,6 +218,17 @@ TEST(SemanticMapFiles, ColorOcTreeExportCarriesClassColours) {
   EXPECT_EQ(n->getColor(), octomap::ColorOcTreeNode::Color(rgb[0], rgb[1], rgb[2]));
 }
 
+TEST(SemanticMapFiles, AnEmptyMapWritesAnEmptyColorOcTree) {
+  // A device that never maps (w-roma) still writes its map folder: OctoMap 1.9 crashed on the
+  // inner-node update of an empty tree.
+  navaid::testing::ScratchDir dir("semantic-map-color-empty");
+  SemanticMap map(small_config());
+  map.write_color_octree(dir / "map-color.ot");
+  std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read((dir / "map-color.ot").string()));
+  ASSERT_TRUE(tree);
+  EXPECT_EQ(tree->size(), 0u);
+}
+
 TEST(SemanticMapFiles, PlyListsTheOccupiedVoxels) {
   navaid::testing::ScratchDir dir("semantic-map-ply");
   SemanticMap map(small_config());

@@ -30,7 +30,8 @@ struct DeviceSpec {
   std::string speech = "on";  ///< on (espeak-ng, speech.wav) | text | off
   bool needs_depth = true;    ///< device.needs: depth
   bool needs_gps = false;     ///< device.needs: gps
-  /// Map every n-th estimate (the planners read the newest map; mapping is the costly stage).
+  /// Map every n-th estimate (the planners read the newest map; mapping is the costly stage); 0:
+  /// never (a device whose guidance needs no map).
   std::size_t map_every = 1;
   /// kRoute: the OSM file of the streets (empty: the simulated scenario's own streets) and the
   /// destination (lat, lon; empty: the end of the scenario's path).

@@ -2,9 +2,8 @@
 // The device half of a full-device run: every estimate the estimator makes goes through mapping
 // (the map session: semantic voxel map, 2D layers, ESDF, obstacle scan), the device's guidance
 // stage and the cue session (generator -> scheduler -> actuator adapter, speech), and what each
-// stage did and cost is kept. In replay it runs on the estimator's thread; with `realtime` on a
-// thread of its own behind a bounded queue (the oldest estimate is dropped, counted, when the
-// queue is full). Writes, into the run folder: map/, plans.csv, guidance_timeline.csv (the input
+// stage did and cost is kept. The stages run on a thread of their own behind a bounded queue
+// (DeviceRunOptions): in replay it blocks when full, in real time it drops the oldest estimate. Writes, into the run folder: map/, plans.csv, guidance_timeline.csv (the input
 // of navaid cues), cues.csv, cues.png, speech.wav, device_stages.csv and latency.csv
 // (docs/full-device-runs.md).
 #include <chrono>
@@ -21,8 +20,13 @@
 namespace navaid::experiments {
 
 struct DeviceRunOptions {
-  bool realtime = false;
-  std::size_t queue_capacity = 8;  ///< estimates waiting for the device thread (realtime)
+  /// The device's stages on a thread of their own, fed in estimate order: the estimator and the
+  /// device work at once on two cores. Replay stays deterministic (the queue blocks when full, so
+  /// nothing is dropped and every stage sees what it would see on one thread).
+  bool threaded = true;
+  /// Real time: a full queue drops its oldest estimate (counted) instead of blocking.
+  bool drop_when_full = false;
+  std::size_t queue_capacity = 8;  ///< estimates waiting for the device thread
   bool figures = true;             ///< cues.png
 };
 
@@ -40,8 +44,9 @@ class DeviceRun {
   DeviceRun& operator=(const DeviceRun&) = delete;
 
   /// One estimate, with the wall-clock time its sensor frame arrived (for the frame-to-cue latency).
-  /// Estimates without a frame of the device's camera are counted and skipped. Replay: an error of
-  /// a stage is thrown here as navaid::Error naming the stage and the frame; real time: by finish().
+  /// Estimates without a frame of the device's camera are counted and skipped. A stage's error is
+  /// thrown as navaid::Error naming the stage and the frame, here (by the next call when threaded)
+  /// or by finish().
   void on_estimate(const StateEstimate& estimate, Clock::time_point arrival);
 
   /// Waits for the device thread, lets the cues run out, writes the files; returns the summary

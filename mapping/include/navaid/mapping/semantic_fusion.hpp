@@ -31,6 +31,9 @@ struct MaxFusion {
   };
   struct State {
     std::uint8_t semantic = 0;  ///< SemanticClass id; 0 (unlabeled) until a labelled point arrives
+    /// Named padding: the node is written to .ot files byte for byte, and unnamed padding would
+    /// carry whatever the heap held (a map file that differs between identical runs).
+    std::uint8_t reserved[3] = {0, 0, 0};
     float probability = 0.0f;
     bool operator==(const State& o) const { return semantic == o.semantic && probability == o.probability; }
   };
@@ -52,10 +55,16 @@ struct BayesianHistogramFusion {
   struct State {
     std::array<float, kNumSemanticClasses> log_posterior{};  ///< all 0: uniform (no vote yet)
     std::uint16_t votes = 0;
+    std::uint16_t reserved = 0;  ///< named padding (see MaxFusion::State)
     bool operator==(const State& o) const { return votes == o.votes && log_posterior == o.log_posterior; }
   };
   static void fuse(State& s, const SemanticObservation& obs, const Params& params);
   static SemanticBelief belief(const State& s);
 };
+
+// The states are written to .ot files byte for byte: no unnamed padding.
+static_assert(sizeof(MaxFusion::State) == 1 + 3 + sizeof(float), "MaxFusion::State has padding");
+static_assert(sizeof(BayesianHistogramFusion::State) == kNumSemanticClasses * sizeof(float) + 2 * sizeof(std::uint16_t),
+              "BayesianHistogramFusion::State has padding");
 
 }  // namespace navaid::mapping

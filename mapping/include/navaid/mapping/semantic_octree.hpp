@@ -43,6 +43,8 @@ class SemanticOcTreeNode : public octomap::OcTreeNode {
     s.read(reinterpret_cast<char*>(&semantics_), sizeof(State));
     return s;
   }
+  // Every byte of State is a member (no padding: semantic_fusion.hpp), so identical maps give
+  // identical files.
   std::ostream& writeData(std::ostream& s) const {
     OcTreeNode::writeData(s);
     s.write(reinterpret_cast<const char*>(&semantics_), sizeof(State));
