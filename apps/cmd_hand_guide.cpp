@@ -28,6 +28,7 @@
 #include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/targets_csv.hpp"
+#include "navaid/core/csv_field.hpp"
 #include "navaid/planning/angles.hpp"
 #include "navaid/planning/apriltag_detector.hpp"
 #include "navaid/planning/hand_guidance.hpp"
@@ -58,13 +59,6 @@ constexpr std::array<HandDirection, 11> kDirections = {
     HandDirection::kUpLeft,   HandDirection::kLeft,  HandDirection::kDownLeft, HandDirection::kDown,
     HandDirection::kDownRight, HandDirection::kForward, HandDirection::kBackward};
 constexpr std::array<const char*, 4> kCases = {"I", "II", "III", "none"};
-
-// A CSV field that may hold commas or quotes.
-std::string csv_quoted(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 std::string num(double v) { return fmt::format("{:.6g}", v); }
 
@@ -287,7 +281,7 @@ void run(const HandGuideArgs& a) {
     } else {
       row += ",,,,,,";
     }
-    row += "," + csv_quoted(cmd.detail) + "\n";
+    row += "," + csv_field(cmd.detail) + "\n";
     csv << row;
     timeline.emplace_back(cmd);
   }

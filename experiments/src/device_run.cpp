@@ -22,6 +22,7 @@
 #include "navaid/interaction/speech_mix.hpp"
 #include "navaid/interaction/synthesized_speech.hpp"
 #include "navaid/interaction/wav_file.hpp"
+#include "navaid/core/csv_field.hpp"
 
 namespace navaid::experiments {
 
@@ -68,7 +69,7 @@ struct DeviceRun::Impl {
       if (f.camera == camera.name) frame_at[f.t] = &f;
     plans_csv = open_csv(out / "plans.csv", "t_ns,planner,status,reason,length_m,expanded,time_ms,path");
     latency_csv = open_csv(out / "latency.csv", "frame_t_ns,cue_t_s,kind,latency_ms");
-    stages_csv = open_csv(out / "device_stages.csv", "t_ns,frame,mapped,mapping_ms,planning_ms,interaction_ms,action,reason");
+    stages_csv = open_csv(out / "device_stages.csv", "t_ns,frame,mapped,mapping_ms,planning_ms,interaction_ms,action,reason,detail");
   }
 
   void process(const StateEstimate& e, Clock::time_point arrival) {
@@ -124,9 +125,10 @@ struct DeviceRun::Impl {
       mapping_ms.push_back(times.mapping_ms);
       planning_ms.push_back(times.planning_ms);
       interaction_ms.push_back(times.interaction_ms);
-      stages_csv << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{}\n", e.t, frame.index, map_this ? 1 : 0,
+      stages_csv << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{},{}\n", e.t, frame.index, map_this ? 1 : 0,
                                 times.mapping_ms, times.planning_ms, times.interaction_ms,
-                                planning::to_string(g.command.action), planning::to_string(g.command.reason));
+                                planning::to_string(g.command.action), planning::to_string(g.command.reason),
+                                csv_field(g.command.detail));
     } catch (const std::exception& ex) {
       throw Error(fmt::format("{} stage failed at frame {} (t = {} ns): {}", stage_name, frame.index, e.t, ex.what()));
     }

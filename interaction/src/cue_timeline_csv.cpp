@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "navaid/core/csv_field.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
 
@@ -13,14 +14,6 @@ namespace {
 
 std::string optional_deg(const std::optional<double>& rad) {
   return rad ? fmt::format("{:.3f}", planning::rad_to_deg(*rad)) : "";
-}
-
-/// Free text in a CSV field: quoted when it holds a comma or a quote.
-std::string csv_text(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (const char c : s) q += c == '"' ? std::string("\"\"") : c == '\n' ? std::string(" ") : std::string(1, c);
-  return q + "\"";
 }
 
 }  // namespace
@@ -45,7 +38,7 @@ void write_cue_timeline_csv(const std::filesystem::path& file, const std::vector
                        to_string(e.outcome), to_string(c.kind), c.priority, optional_deg(c.direction_rad),
                        optional_deg(c.steering_rad), c.rumble ? std::string(planning::to_string(*c.rumble)) : "",
                        c.hand ? std::string(planning::to_string(*c.hand)) : "", c.message ? c.message->id : "",
-                       csv_text(e.text), e.outcome == CueOutcome::kSpoken ? fmt::format("{:.3f}", e.duration_s) : "",
+                       csv_field(e.text), e.outcome == CueOutcome::kSpoken ? fmt::format("{:.3f}", e.duration_s) : "",
                        e.pattern ? format_pattern(*e.pattern) : "");
   }
   if (!out) throw IoError(file.string(), "write failed");
