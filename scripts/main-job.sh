@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# navaid's main job: a full-device simulated walk (eLabrador Route 1 with the head mount: RGB-D
+# navaid's main job: full-device runs on rendered recordings (the Smart Cane down its corridor,
+# W-ROMA's hand guidance in the lab: every layer from RGB-D + IMU to the steering wheel, the hand
+# unit and speech, with report.html), a full-device simulated walk (eLabrador Route 1 with the head mount: RGB-D
 # images, labels, IMU, GNSS, magnetometer, ground truth), the whole route again in feature mode
 # run through the sliding-window estimator and evaluated against ground truth, the semantic map of
 # the image walk (built during the estimator's run, and again from ground truth), a small reproduction
@@ -25,6 +27,13 @@ if [ ! -d "$DATA/gpsd-nmea" ] || [ ! -d "$DATA/rpg-euroc-V1_02" ]; then
 fi
 rm -rf "$OUT"
 mkdir -p "$OUT"
+
+echo "== Full-device runs: the Smart Cane down the corridor, W-ROMA's hand guidance to the tagged box"
+$NAVAID simulate --scenario corridor --seed 7 --cache "$OUT/render-cache" --out "$OUT/sim-corridor"
+$NAVAID run --recording "$OUT/sim-corridor" --device smart-cane --out "$OUT/device-smart-cane"
+$NAVAID simulate --scenario lab-walk-1 --seed 7 --set duration=15 --cache "$OUT/render-cache" --out "$OUT/sim-lab-walk-1"
+$NAVAID run --recording "$OUT/sim-lab-walk-1" --device w-roma --out "$OUT/device-w-roma"
+echo "   reports: $OUT/device-smart-cane/report.html, $OUT/device-w-roma/report.html"
 
 echo "== Simulated walk: route1, head mount, first 40 s with images (render cache in $OUT/render-cache)"
 $NAVAID simulate --scenario route1 --mount head --seed 7 --set duration=40 --cache "$OUT/render-cache" \

@@ -11,6 +11,7 @@
 #include <pcl/ModelCoefficients.h>
 #include <pcl/PointIndices.h>
 #include <pcl/common/transforms.h>
+#include <pcl/console/print.h>
 #include <pcl/filters/approximate_voxel_grid.h>
 #include <pcl/filters/conditional_removal.h>
 #include <pcl/filters/extract_indices.h>
@@ -339,6 +340,9 @@ struct ObstaclePipeline::Impl {
 
 ObstaclePipeline::ObstaclePipeline(const ObstaclePipelineConfig& config) {
   validate(config);
+  // A frame without a ground plane is expected (the thesis' running-average fallback, counted in
+  // ObstacleScan::counters): PCL's "RANSAC found no model" on stderr for each would drown the log.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   impl_ = std::make_unique<Impl>(config);
 }
 ObstaclePipeline::~ObstaclePipeline() = default;
