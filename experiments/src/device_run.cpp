@@ -3,8 +3,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <condition_variable>
-#include <deque>
 #include <exception>
 #include <fstream>
 #include <map>
@@ -12,6 +10,7 @@
 #include <thread>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/bounded_queue.hpp"
 #include "navaid/experiments/estimator_pipeline.hpp"
 #include "navaid/experiments/figure_script.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
@@ -49,6 +48,31 @@ std::string path_text(const std::vector<mapping::Vec2>& path) {
 
 }  // namespace
 
+/// What the mapping stage leaves for the planners: the 2D maps and obstacle scan after a frame.
+struct MapSnapshot {
+  std::optional<mapping::LocalMaps> maps;
+  std::optional<mapping::ObstacleScan> scan;
+};
+
+/// One estimate on its way through the device's stages.
+struct DeviceItem {
+  StateEstimate estimate;
+  Clock::time_point arrival;
+  const RgbdFrame* frame = nullptr;
+  bool mapped = false;
+  double mapping_ms = 0;
+  std::shared_ptr<const MapSnapshot> snapshot;  ///< replay: the map after this estimate's mapping
+  std::vector<interaction::GuidanceTimelineEntry> system_events;
+};
+
+/// What the run records of one frame (device_stages.csv).
+struct FrameLog {
+  std::size_t frame = 0;
+  bool mapped = false;
+  DeviceRun::StageTimes times;
+  std::string action, reason, detail;
+};
+
 struct DeviceRun::Impl {
   Impl(const DeviceSpec& s, const Config& config, const io::Recording& recording, const std::filesystem::path& recording_dir,
        const CameraCalibration& camera, const std::filesystem::path& out_dir, const MapSessionOptions& map_options,
@@ -61,7 +85,10 @@ struct DeviceRun::Impl {
         device(interaction::make_device_adapter(s.actuator, config)),
         speech_config(interaction::read_speech_config(config)),
         map(mapping::read_mapper_config(config), camera, recording_dir, out_dir / "map", map_options),
-        stage(make_guidance_stage({s, config, recording, recording_dir, camera, out_dir})) {
+        stage(make_guidance_stage({s, config, recording, recording_dir, camera, out_dir})),
+        map_queue(o.queue_capacity, o.drop_when_full),
+        guide_queue(o.queue_capacity, o.drop_when_full),
+        newest(std::make_shared<MapSnapshot>()) {
     if (spec.speech == "text") speech_config.text_only = true;
     if (spec.speech != "off") speech = std::make_unique<interaction::SynthesizedSpeech>(speech_config);
     session = std::make_unique<interaction::CueSession>(generator, policy, *device, speech.get());
@@ -69,44 +96,76 @@ struct DeviceRun::Impl {
       if (f.camera == camera.name) frame_at[f.t] = &f;
     plans_csv = open_csv(out / "plans.csv", "t_ns,planner,status,reason,length_m,expanded,time_ms,path");
     latency_csv = open_csv(out / "latency.csv", "frame_t_ns,cue_t_s,kind,latency_ms");
-    stages_csv = open_csv(out / "device_stages.csv", "t_ns,frame,mapped,mapping_ms,planning_ms,interaction_ms,action,reason,detail");
   }
 
-  void process(const StateEstimate& e, Clock::time_point arrival) {
-    const auto it = frame_at.find(e.t);
-    if (it == frame_at.end()) {
-      ++without_frame;
-      return;
-    }
-    const RgbdFrame& frame = *it->second;
-    const char* stage_name = "mapping";
+  /// Runs `f`, naming the stage and the frame in its error.
+  template <class F>
+  static void in_stage(const char* name, const DeviceItem& item, F&& f) {
     try {
-      StageTimes times;
-      auto t0 = Clock::now();
-      const bool map_this = spec.map_every > 0 && estimates % spec.map_every == 0;
-      ++estimates;
-      if (map_this) map.add(frame, e);
-      auto t1 = Clock::now();
-      times.mapping_ms = ms_between(t0, t1);
+      f();
+    } catch (const std::exception& ex) {
+      throw Error(fmt::format("{} stage failed at frame {} (t = {} ns): {}", name, item.frame->index, item.estimate.t,
+                              ex.what()));
+    }
+  }
 
-      stage_name = "planning";
-      const auto& scan = map.last_obstacle_scan();
-      GuidanceInput in{frame, e, map.mapper().local_maps(), scan ? &*scan : nullptr};
-      GuidanceOutput g = stage->update(in);
-      auto t2 = Clock::now();
-      times.planning_ms = ms_between(t1, t2);
-      if (g.new_plan) {
-        const planning::Plan& p = *g.new_plan;
-        plans_csv << fmt::format("{},{},{},{},{:.3f},{},{:.3f},{}\n", e.t, g.planner, p.found() ? "found" : "not-found",
-                                 planning::to_string(p.reason), p.length_m, p.expanded, 1e3 * p.time_s,
-                                 path_text(p.path_W));
-        ++plans;
-        plans_found += p.found() ? 1 : 0;
+  /// The mapping stage: maps the frame when it is due and publishes the map it leaves.
+  void map_step(DeviceItem& item) {
+    item.mapped = spec.map_every > 0 && map_counter++ % spec.map_every == 0;
+    const auto t0 = Clock::now();
+    in_stage("mapping", item, [&] {
+      if (item.mapped) map.add(*item.frame, item.estimate);
+    });
+    item.mapping_ms = ms_between(t0, Clock::now());
+    item.system_events = map.take_system_events();
+    std::shared_ptr<const MapSnapshot> snapshot;
+    {
+      std::lock_guard<std::mutex> lock(m);
+      if (item.mapped) {
+        auto next = std::make_shared<MapSnapshot>();
+        if (const mapping::LocalMaps* maps = map.mapper().local_maps()) next->maps = *maps;
+        next->scan = map.last_obstacle_scan();
+        newest = next;
       }
+      snapshot = newest;
+      pending_events.insert(pending_events.end(), item.system_events.begin(), item.system_events.end());
+      log[item.estimate.t].mapped = item.mapped;
+      log[item.estimate.t].times.mapping_ms = item.mapping_ms;
+    }
+    item.snapshot = snapshot;
+    mapping_ms.push_back(item.mapping_ms);
+  }
 
-      stage_name = "interaction";
-      std::vector<interaction::GuidanceTimelineEntry> entries = map.take_system_events();
-      entries.emplace_back(g.command);
+  /// Planning and interaction: the guidance command on the item's map (real time: the newest),
+  /// then the cues it causes.
+  void guide_step(DeviceItem& item) {
+    const StateEstimate& e = item.estimate;
+    std::shared_ptr<const MapSnapshot> snapshot = item.snapshot;
+    std::vector<interaction::GuidanceTimelineEntry> entries;
+    {
+      std::lock_guard<std::mutex> lock(m);
+      if (!snapshot) snapshot = newest;
+      entries.swap(pending_events);
+    }
+    FrameLog f;
+    f.frame = item.frame->index;
+    const auto t1 = Clock::now();
+    GuidanceOutput g;
+    in_stage("planning", item, [&] {
+      g = stage->update({*item.frame, e, snapshot->maps ? &*snapshot->maps : nullptr,
+                         snapshot->scan ? &*snapshot->scan : nullptr});
+    });
+    const auto t2 = Clock::now();
+    f.times.planning_ms = ms_between(t1, t2);
+    if (g.new_plan) {
+      const planning::Plan& p = *g.new_plan;
+      plans_csv << fmt::format("{},{},{},{},{:.3f},{},{:.3f},{}\n", e.t, g.planner, p.found() ? "found" : "not-found",
+                               planning::to_string(p.reason), p.length_m, p.expanded, 1e3 * p.time_s, path_text(p.path_W));
+      ++plans;
+      plans_found += p.found() ? 1 : 0;
+    }
+    entries.emplace_back(g.command);
+    in_stage("interaction", item, [&] {
       for (const auto& entry : entries) {
         timeline.push_back(entry);
         for (const interaction::CueEvent& ev : session->feed(entry)) {
@@ -114,24 +173,24 @@ struct DeviceRun::Impl {
           if (!reaches_user || ev.cue.t != e.t) continue;
           // The cue this frame caused: from the frame's arrival to the moment it is handed to the
           // actuator or the speaker.
-          const double latency = ms_between(arrival, Clock::now());
+          const double latency = ms_between(item.arrival, Clock::now());
           latency_ms.push_back(latency);
           latency_csv << fmt::format("{},{:.3f},{},{:.3f}\n", e.t, ns_to_seconds(ev.t - t_origin(e.t)),
                                      interaction::to_string(ev.cue.kind), latency);
         }
       }
-      times.interaction_ms = ms_between(t2, Clock::now());
-      stage_times[e.t] = times;
-      mapping_ms.push_back(times.mapping_ms);
-      planning_ms.push_back(times.planning_ms);
-      interaction_ms.push_back(times.interaction_ms);
-      stages_csv << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{},{}\n", e.t, frame.index, map_this ? 1 : 0,
-                                times.mapping_ms, times.planning_ms, times.interaction_ms,
-                                planning::to_string(g.command.action), planning::to_string(g.command.reason),
-                                csv_field(g.command.detail));
-    } catch (const std::exception& ex) {
-      throw Error(fmt::format("{} stage failed at frame {} (t = {} ns): {}", stage_name, frame.index, e.t, ex.what()));
-    }
+    });
+    f.times.interaction_ms = ms_between(t2, Clock::now());
+    planning_ms.push_back(f.times.planning_ms);
+    interaction_ms.push_back(f.times.interaction_ms);
+    f.action = std::string(planning::to_string(g.command.action));
+    f.reason = std::string(planning::to_string(g.command.reason));
+    f.detail = g.command.detail;
+    std::lock_guard<std::mutex> lock(m);
+    FrameLog& l = log[e.t];
+    f.mapped = l.mapped;
+    f.times.mapping_ms = l.times.mapping_ms;
+    l = f;
   }
 
   /// The timeline's clock starts at the first estimate with a frame (speech.wav's zero).
@@ -140,53 +199,72 @@ struct DeviceRun::Impl {
     return *origin;
   }
 
-  // Real time: the device thread and its queue.
-  void start_thread() {
-    worker = std::thread([this] {
-      for (;;) {
-        std::pair<StateEstimate, Clock::time_point> item;
-        {
-          std::unique_lock<std::mutex> lock(m);
-          changed.wait(lock, [&] { return !queue.empty() || closed; });
-          if (queue.empty()) return;
-          item = std::move(queue.front());
-          queue.pop_front();
-          room.notify_one();
+  void on_estimate(const StateEstimate& e, Clock::time_point arrival) {
+    if (error()) std::rethrow_exception(error());  // stops the estimator: the run ends at the failed stage
+    const auto it = frame_at.find(e.t);
+    if (it == frame_at.end()) {
+      ++without_frame;
+      return;
+    }
+    ++estimates;
+    DeviceItem item{e, arrival, it->second, false, 0, nullptr, {}};
+    if (!options.threaded) {
+      map_step(item);
+      guide_step(item);
+      return;
+    }
+    if (options.drop_when_full) {
+      // Real time: the planners do not wait for this frame's map; they take the newest one.
+      DeviceItem to_guide = item;
+      map_queue.push(std::move(item));
+      guide_queue.push(std::move(to_guide));
+    } else {
+      map_queue.push(std::move(item));  // the map thread hands it on with its map
+    }
+  }
+
+  void fail(std::exception_ptr e) {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      if (!first_error) first_error = e;
+    }
+    map_queue.close(true);
+    guide_queue.close(true);
+  }
+  std::exception_ptr error() {
+    std::lock_guard<std::mutex> lock(m);
+    return first_error;
+  }
+
+  void start_threads() {
+    map_thread = std::thread([this] {
+      try {
+        while (auto item = map_queue.pop()) {
+          map_step(*item);
+          if (!options.drop_when_full) guide_queue.push(std::move(*item));
         }
-        try {
-          process(item.first, item.second);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(m);
-          error = std::current_exception();
-          closed = true;
-          queue.clear();
-          room.notify_all();
-          return;
+        guide_queue.close();
+      } catch (...) {
+        fail(std::current_exception());
+      }
+    });
+    guide_thread = std::thread([this] {
+      try {
+        while (auto item = guide_queue.pop()) {
+          if (options.drop_when_full) item->snapshot = nullptr;  // the newest map, read now
+          guide_step(*item);
         }
+      } catch (...) {
+        fail(std::current_exception());
       }
     });
   }
 
-  void push(const StateEstimate& e, Clock::time_point arrival) {
-    std::unique_lock<std::mutex> lock(m);
-    if (!options.drop_when_full) room.wait(lock, [&] { return error || queue.size() < options.queue_capacity; });
-    if (error) std::rethrow_exception(error);  // stops the estimator: the run ends at the failed stage
-    if (queue.size() >= options.queue_capacity) {
-      queue.pop_front();  // the newest estimate matters most to a walking user
-      ++dropped;
-    }
-    queue.emplace_back(e, arrival);
-    max_depth = std::max(max_depth, queue.size());
-    changed.notify_one();
-  }
-
-  void stop_thread() {
-    {
-      std::lock_guard<std::mutex> lock(m);
-      closed = true;
-      changed.notify_one();
-    }
-    if (worker.joinable()) worker.join();
+  void stop_threads() {
+    map_queue.close();
+    if (map_thread.joinable()) map_thread.join();
+    guide_queue.close();
+    if (guide_thread.joinable()) guide_thread.join();
   }
 
   DeviceSpec spec;
@@ -201,20 +279,20 @@ struct DeviceRun::Impl {
   MapSession map;
   std::unique_ptr<GuidanceStage> stage;
   std::map<Timestamp, const RgbdFrame*> frame_at;
-  std::ofstream plans_csv, latency_csv, stages_csv;
+  std::ofstream plans_csv, latency_csv;
   std::vector<interaction::GuidanceTimelineEntry> timeline;
-  std::map<Timestamp, StageTimes> stage_times;
   std::vector<double> mapping_ms, planning_ms, interaction_ms, latency_ms;
-  std::size_t estimates = 0, without_frame = 0, plans = 0, plans_found = 0;
+  std::size_t estimates = 0, without_frame = 0, plans = 0, plans_found = 0, map_counter = 0;
   std::optional<Timestamp> origin;
 
-  std::thread worker;
-  std::mutex m;
-  std::condition_variable changed, room;
-  std::deque<std::pair<StateEstimate, Clock::time_point>> queue;
-  bool closed = false;
-  std::exception_ptr error;
-  std::size_t dropped = 0, max_depth = 0;
+  BoundedQueue<DeviceItem> map_queue, guide_queue;
+  std::thread map_thread, guide_thread;
+  std::mutex m;  // guards what both threads touch: newest, pending_events, log, first_error
+  std::shared_ptr<const MapSnapshot> newest;
+  std::vector<interaction::GuidanceTimelineEntry> pending_events;
+  std::map<Timestamp, FrameLog> log;
+  std::map<Timestamp, StageTimes> stage_times;
+  std::exception_ptr first_error;
 };
 
 DeviceRun::DeviceRun(const DeviceSpec& spec, const Config& config, const io::Recording& recording,
@@ -222,27 +300,34 @@ DeviceRun::DeviceRun(const DeviceSpec& spec, const Config& config, const io::Rec
                      const std::filesystem::path& out, const MapSessionOptions& map_options,
                      const DeviceRunOptions& options)
     : impl_(std::make_unique<Impl>(spec, config, recording, recording_dir, camera, out, map_options, options)) {
-  if (options.threaded) impl_->start_thread();
+  if (options.threaded) impl_->start_threads();
 }
 
-DeviceRun::~DeviceRun() { impl_->stop_thread(); }
+DeviceRun::~DeviceRun() { impl_->stop_threads(); }
 
 void DeviceRun::on_estimate(const StateEstimate& estimate, Clock::time_point arrival) {
-  if (impl_->options.threaded) {
-    impl_->push(estimate, arrival);
-  } else {
-    impl_->process(estimate, arrival);
-  }
+  impl_->on_estimate(estimate, arrival);
 }
 
 const std::map<Timestamp, DeviceRun::StageTimes>& DeviceRun::stage_times() const { return impl_->stage_times; }
 
 nlohmann::ordered_json DeviceRun::finish() {
   Impl& d = *impl_;
-  d.stop_thread();
+  d.stop_threads();
   d.session->drain();
   const std::vector<interaction::CueEvent>& events = d.session->events();
-  for (auto* f : {&d.plans_csv, &d.latency_csv, &d.stages_csv}) f->flush();
+  for (auto* f : {&d.plans_csv, &d.latency_csv}) f->flush();
+  {
+    std::ofstream stages = open_csv(d.out / "device_stages.csv",
+                                    "t_ns,frame,mapped,mapping_ms,planning_ms,interaction_ms,action,reason,detail");
+    for (const auto& [t, f] : d.log) {
+      if (f.action.empty()) continue;  // real time: mapped, but its guidance was dropped
+      d.stage_times[t] = f.times;
+      stages << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{},{}\n", t, f.frame, f.mapped ? 1 : 0,
+                            f.times.mapping_ms, f.times.planning_ms, f.times.interaction_ms, f.action, f.reason,
+                            csv_field(f.detail));
+    }
+  }
   interaction::write_guidance_timeline_csv(d.out / "guidance_timeline.csv", d.timeline);
   interaction::write_cue_timeline_csv(d.out / "cues.csv", events);
   std::vector<std::string> spoken;
@@ -270,7 +355,13 @@ nlohmann::ordered_json DeviceRun::finish() {
                {"spoken", spoken}, {"speech_wav_s", speech_s}};
   j["estimates"] = {{"with_frame", d.estimates}, {"without_frame", d.without_frame}};
   if (d.options.threaded)
-    j["device_thread"] = {{"queue_capacity", d.options.queue_capacity}, {"when_full", d.options.drop_when_full ? "drop the oldest" : "wait"}, {"dropped", d.dropped}, {"max_depth", d.max_depth}};
+    j["device_thread"] = {{"threads", "mapping; planning + interaction"},
+                          {"queue_capacity", d.options.queue_capacity},
+                          {"when_full", d.options.drop_when_full ? "drop the oldest" : "wait"},
+                          {"dropped", d.map_queue.dropped() + d.guide_queue.dropped()},
+                          {"dropped_before_mapping", d.map_queue.dropped()},
+                          {"dropped_before_planning", d.guide_queue.dropped()},
+                          {"max_depth", std::max(d.map_queue.max_depth(), d.guide_queue.max_depth())}};
   const auto m = d.map.finish({{"poses", "the estimator's, as the run went"}});
   j["mapping"] = {{"folder", "map"}, {"frames", m["frames"]}};
   if (m.contains("quality")) j["mapping"]["quality"] = m["quality"]["occupancy"];
@@ -285,7 +376,7 @@ nlohmann::ordered_json DeviceRun::finish() {
       spdlog::warn("cues.png not drawn: {}", e.what());
     }
   }
-  if (d.error) std::rethrow_exception(d.error);
+  if (const auto e = d.error()) std::rethrow_exception(e);
   return j;
 }
 

@@ -1,7 +1,5 @@
 #include "navaid/io/image_io.hpp"
 
-#include <fmt/format.h>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -266,7 +264,7 @@ void release_frame_images(RgbdFrame& frame) {
 
 ImageU8 to_gray(const ImageU8& image, const std::string& file) {
   if (image.channels == 1) return image;
-  if (image.channels != 3) throw IoError(file, fmt::format("expected a grey or RGB image, found {} channels", image.channels));
+  if (image.channels != 3) throw IoError(file, "expected a grey or RGB image, found " + std::to_string(image.channels) + " channels");
   ImageU8 g(image.width, image.height, 1);
   for (std::size_t i = 0; i < g.pixels.size(); ++i) {
     const std::uint8_t* p = &image.pixels[3 * i];
