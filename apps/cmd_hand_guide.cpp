@@ -208,10 +208,7 @@ void run(const HandGuideArgs& a) {
     const auto tag = planning::find_tag(detector.detect(gray, camera.get()), tag_id);
     std::optional<planning::TargetDetection> detection;
     if (tag) {
-      detection = planning::TargetDetection{tag->centre_px, tag->corners_px, std::nullopt};
-      if (!frame.depth.empty())
-        detection->depth =
-            planning::depth_patch_stats(frame.depth, tag->centre_px, guidance_config.patch_half_px, depth_min, depth_max);
+      detection = planning::target_from_tag(*tag, frame.depth, guidance_config.patch_half_px, depth_min, depth_max);
     }
     StateEstimate estimate;
     if (poses[i]) {

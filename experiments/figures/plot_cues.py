@@ -33,6 +33,13 @@ def main() -> int:
         rows = list(csv.DictReader(f))
     if not rows:
         print(f"plot_cues: {args.cues} has no events", file=sys.stderr)
+    # A recording's own clock (seconds since 1970 in simulated and real recordings): time from the
+    # first event instead, so the axis reads in seconds of the run.
+    t_first = min(float(r["t_s"]) for r in rows) if rows else 0.0
+    shifted = t_first > 1e6
+    if shifted:
+        for r in rows:
+            r["t_s"] = str(float(r["t_s"]) - t_first)
     t_end = max([float(r["t_s"]) for r in rows] + [1.0]) + 1.0
 
     fig, (ax_act, ax_cue, ax_speech) = plt.subplots(3, 1, figsize=(12, 7), sharex=True,
@@ -82,7 +89,7 @@ def main() -> int:
             starts = {}
     ax_speech.set_yticks([])
     ax_speech.set_ylabel("speech")
-    ax_speech.set_xlabel("t [s]")
+    ax_speech.set_xlabel("t from the first cue [s]" if shifted else "t [s]")
     ax_speech.set_xlim(0, t_end)
     fig.tight_layout()
     fig.savefig(args.out, dpi=110)

@@ -87,7 +87,7 @@ std::vector<std::string> missing_for_device(const DeviceSpec& spec, const io::Re
   const bool any_depth = std::any_of(recording.frames.begin(), recording.frames.end(),
                                      [](const RgbdFrame& f) { return f.has_depth(); });
   if (spec.needs_depth && !recording.frames.empty() && !any_depth)
-    missing.push_back("depth images (device " + spec.name + " maps obstacles from depth)");
+    missing.push_back("depth images (device " + spec.name + " needs them: device.needs; set device.needs=[] to run without, degraded)");
   if (spec.needs_gps && recording.gps.empty())
     missing.push_back("GPS fixes (device " + spec.name + " follows a route registered to GPS)");
   const bool simulated = std::filesystem::is_regular_file(recording_dir / "simulation.yaml");

@@ -59,10 +59,7 @@ class HandTargetStage final : public GuidanceStage {
     std::optional<planning::TargetDetection> detection;
     if (tag) {
       ++detected_;
-      detection = planning::TargetDetection{tag->centre_px, tag->corners_px, std::nullopt};
-      if (!frame.depth.empty())
-        detection->depth = planning::depth_patch_stats(frame.depth, tag->centre_px, guidance_config_.patch_half_px,
-                                                       depth_min_m_, depth_max_m_);
+      detection = planning::target_from_tag(*tag, frame.depth, guidance_config_.patch_half_px, depth_min_m_, depth_max_m_);
     }
     out.command = guidance_.update(in.estimate, detection);
     ++reasons_[std::string(planning::to_string(out.command.reason))];

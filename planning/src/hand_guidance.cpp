@@ -95,6 +95,13 @@ HandGuidanceConfig read_hand_guidance_config(const Config& config) {
   return c;
 }
 
+TargetDetection target_from_tag(const AprilTagDetection& tag, const ImageF32& depth, int patch_half_px,
+                                double depth_min_m, double depth_max_m) {
+  TargetDetection d{tag.centre_px, tag.corners_px, std::nullopt};
+  if (!depth.empty()) d.depth = depth_patch_stats(depth, tag.centre_px, patch_half_px, depth_min_m, depth_max_m);
+  return d;
+}
+
 HandGuidance::HandGuidance(const HandGuidanceConfig& config, const CameraModel& camera, const SE3& T_H_C)
     : config_(config),
       camera_(camera),

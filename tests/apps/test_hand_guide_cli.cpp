@@ -83,7 +83,10 @@ std::vector<Row> read_guidance(const fs::path& file) {
     r.true_in_view = f[16] == "1";
     if (!f[17].empty()) r.true_px = Eigen::Vector2d(std::stod(f[17]), std::stod(f[18]));
     if (!f[19].empty()) r.true_H = Eigen::Vector3d(std::stod(f[19]), std::stod(f[20]), std::stod(f[21]));
-    EXPECT_EQ(f[22].front(), '"');
+    // The detail is free text: quoted when it holds a comma (the last field keeps the rest of the line).
+    if (f[22].find(',') != std::string::npos) {
+      EXPECT_EQ(f[22].front(), '"') << line;
+    }
     rows.push_back(r);
   }
   return rows;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "browser_check.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -106,6 +107,11 @@ TEST_F(RunDeviceCli, SmartCaneRunsEveryLayerAndWritesTheRunFolder) {
   EXPECT_EQ(data_rows(out / "latency.csv"), s["latency"]["cues"].get<std::size_t>());
   EXPECT_GT(s["pipeline"]["realtime_factor"].get<double>(), 0.0);
   EXPECT_EQ(s["device_thread"]["dropped"].get<std::size_t>(), 0u);  // replay waits, never drops
+  // The report opens in a browser with every figure (map, track, cues, timing) loaded.
+  const auto page = navaid::testing::check_page_in_chromium(out / "report.html");
+  if (navaid::testing::browser_available(page)) {
+    EXPECT_EQ(page.status, "ok") << page.figures << " figures, " << page.errors << " script errors";
+  }
   // The guidance timeline is the input of navaid cues.
   const auto cues = navaid_cli("cues --guidance '" + (out / "guidance_timeline.csv").string() +
                                "' --device wheel --speech off --no-figure --out '" + path("smart-cane-cues").string() + "'");
@@ -194,6 +200,26 @@ TEST_F(RunDeviceCli, ARecordingThatCannotServeTheDeviceIsNamed) {
   const auto bad_key = run("corridor", "smart-cane", path("bad-key"), " --set device.actuator=bell");
   EXPECT_NE(bad_key.status, 0);
   EXPECT_NE(bad_key.output.find("device.actuator"), std::string::npos) << bad_key.output;
+}
+
+TEST_F(RunDeviceCli, RealEurocImagesWithoutDepthAreRefusedOrRunDegraded) {
+  // The real EuRoC V1_01 frames have IMU but no depth: W-ROMA's preset names what is missing;
+  // told to do without, hand guidance runs bearing-only (case II) on the real images.
+  if (!navaid::testing::have_shared_data()) return;
+  const fs::path euroc = navaid::testing::shared_data_dir() / "euroc-V1_01-micro";
+  const auto refused = navaid_cli("run --recording '" + euroc.string() + "' --device w-roma --out '" +
+                                  path("euroc-refused").string() + "'");
+  EXPECT_NE(refused.status, 0);
+  EXPECT_NE(refused.output.find("cannot serve device w-roma: it lacks depth images"), std::string::npos)
+      << refused.output;
+  const fs::path out = path("euroc-degraded");
+  const auto degraded = navaid_cli("run --recording '" + euroc.string() + "' --device w-roma --no-plot --out '" +
+                                   out.string() + "' --set device.needs=[] --set device.tag_id=0");
+  ASSERT_EQ(degraded.status, 0) << degraded.output;
+  const auto s = summary(out);
+  EXPECT_EQ(s["depth"], false);  // VIO
+  EXPECT_GT(s["estimates"]["with_frame"].get<std::size_t>(), 40u);
+  EXPECT_EQ(data_rows(out / "device_stages.csv"), s["estimates"]["with_frame"].get<std::size_t>());
 }
 
 TEST_F(RunDeviceCli, AStageThatFailsMidRunIsNamedAndTheOutputsSoFarAreKept) {

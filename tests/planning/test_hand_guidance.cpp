@@ -76,6 +76,20 @@ TEST(DepthPatch, MedianValidCountRangeAndImageBorder) {
   EXPECT_EQ(depth_patch_stats(ImageF32(), Eigen::Vector2d(0, 0), 2, 0.3, 5.0).total, 0);
 }
 
+TEST(DepthPatch, TargetFromTagMeasuresThePatchOnlyWithDepth) {
+  navaid::planning::AprilTagDetection tag;
+  tag.id = 5;
+  tag.centre_px = Eigen::Vector2d(10, 5);
+  const auto bearing_only = navaid::planning::target_from_tag(tag, ImageF32(), 2, 0.3, 5.0);
+  EXPECT_EQ(bearing_only.centre_px, tag.centre_px);
+  EXPECT_FALSE(bearing_only.depth.has_value());
+  const auto with_depth = navaid::planning::target_from_tag(tag, ImageF32(20, 10, 1, 2.0f), 2, 0.3, 5.0);
+  ASSERT_TRUE(with_depth.depth.has_value());
+  EXPECT_EQ(with_depth.depth->valid, 25);
+  EXPECT_DOUBLE_EQ(with_depth.depth->median_m, 2.0);
+  ASSERT_TRUE(with_depth.corners_px.has_value());
+}
+
 TEST(HandGuidance, NeverSeenIsWaitTargetNotSeen) {
   const Rig rig = hand_rig();
   HandGuidance g({}, *rig.camera, rig.T_H_C);

@@ -39,6 +39,7 @@
 #include "navaid/core/config.hpp"
 #include "navaid/core/image.hpp"
 #include "navaid/core/state_estimate.hpp"
+#include "navaid/planning/apriltag_detector.hpp"
 #include "navaid/planning/guidance_command.hpp"
 #include "navaid/planning/hand_sector.hpp"
 
@@ -63,6 +64,11 @@ struct TargetDetection {
   std::optional<std::array<Eigen::Vector2d, 4>> corners_px;
   std::optional<DepthPatchStats> depth;
 };
+
+/// The target as hand guidance takes it from a tag detection: its centre and corners and, when
+/// `depth` is not empty, the depth patch of half size `patch_half_px` around the centre.
+TargetDetection target_from_tag(const AprilTagDetection& tag, const ImageF32& depth, int patch_half_px,
+                                double depth_min_m, double depth_max_m);
 
 enum class HandGuidanceScope { kSinceSeen, kAbsolute };
 
