@@ -139,6 +139,7 @@ class FrontEndThread {
         return !shared_.abort;
       }
     }
+    if (in_.on_frame_arrival) in_.on_frame_arrival(t, q.arrival);
     if (in_.source) {
       if (!track(k, t, q)) return false;
     } else {

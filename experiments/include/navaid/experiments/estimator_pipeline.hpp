@@ -49,6 +49,9 @@ struct PipelineInput {
   /// with the wall-clock time the estimate's camera frame arrived (its loading and tracking
   /// included).
   std::function<void(const StateEstimate&, std::chrono::steady_clock::time_point)> on_estimate;
+  /// Real time only: called on the front end's thread when a camera frame of the estimator's
+  /// camera arrives (its time, the wall clock), before it is loaded and tracked.
+  std::function<void(Timestamp, std::chrono::steady_clock::time_point)> on_frame_arrival;
 };
 
 struct RealtimeOptions {
