@@ -13,6 +13,7 @@
 #include "navaid/experiments/bounded_queue.hpp"
 #include "navaid/experiments/estimator_pipeline.hpp"
 #include "navaid/experiments/figure_script.hpp"
+#include "navaid/estimation/state_prediction.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
 #include "navaid/interaction/cue_session.hpp"
 #include "navaid/interaction/cue_timeline_csv.hpp"
@@ -56,7 +57,7 @@ struct MapSnapshot {
 
 /// One estimate on its way through the device's stages.
 struct DeviceItem {
-  StateEstimate estimate;
+  StateEstimate estimate;  ///< solved, or predicted to the frame's arrival
   Clock::time_point arrival;
   const RgbdFrame* frame = nullptr;
   bool mapped = false;
@@ -86,6 +87,9 @@ struct DeviceRun::Impl {
         speech_config(interaction::read_speech_config(config)),
         map(mapping::read_mapper_config(config), camera, recording_dir, out_dir / "map", map_options),
         stage(make_guidance_stage({s, config, recording, recording_dir, camera, out_dir})),
+        imu(recording.imu),
+        imu_noise(recording.calibration.imu ? estimation::ImuNoise::from(*recording.calibration.imu)
+                                            : estimation::ImuNoise{}),
         map_queue(o.queue_capacity, o.drop_when_full),
         guide_queue(o.queue_capacity, o.drop_when_full),
         newest(std::make_shared<MapSnapshot>()) {
@@ -134,6 +138,7 @@ struct DeviceRun::Impl {
     }
     item.snapshot = snapshot;
     mapping_ms.push_back(item.mapping_ms);
+    if (item.mapped) map_latency_ms.push_back(ms_between(item.arrival, Clock::now()));
   }
 
   /// Planning and interaction: the guidance command on the item's map (real time: the newest),
@@ -213,7 +218,15 @@ struct DeviceRun::Impl {
       guide_step(item);
       return;
     }
-    if (options.drop_when_full) {
+    if (options.predict_at_arrival) {
+      // The planners have had this frame at its arrival (on_frame_arrival): the solved estimate
+      // builds the map and is the next prediction's start.
+      {
+        std::lock_guard<std::mutex> lock(m);
+        last_solved = e;
+      }
+      map_queue.push(std::move(item));
+    } else if (options.drop_when_full) {
       // Real time: the planners do not wait for this frame's map; they take the newest one.
       DeviceItem to_guide = item;
       map_queue.push(std::move(item));
@@ -221,6 +234,24 @@ struct DeviceRun::Impl {
     } else {
       map_queue.push(std::move(item));  // the map thread hands it on with its map
     }
+  }
+
+  void on_frame_arrival(Timestamp t, Clock::time_point arrival) {
+    if (error()) std::rethrow_exception(error());
+    const auto it = frame_at.find(t);
+    std::optional<StateEstimate> from;
+    {
+      std::lock_guard<std::mutex> lock(m);
+      from = last_solved;
+    }
+    if (it == frame_at.end() || !from || from->t > t) return;  // nothing solved yet: no pose to act on
+    DeviceItem item{from->t == t ? *from : estimation::predict_state(*from, t, imu, imu_noise), arrival, it->second,
+                    false, 0, nullptr, {}};
+    {
+      std::lock_guard<std::mutex> lock(m);
+      prediction_s.push_back(ns_to_seconds(t - from->t));
+    }
+    guide_queue.push(std::move(item));  // refused once closed after an error: reported by the next call
   }
 
   void fail(std::exception_ptr e) {
@@ -285,6 +316,10 @@ struct DeviceRun::Impl {
   std::size_t estimates = 0, without_frame = 0, plans = 0, plans_found = 0, map_counter = 0;
   std::optional<Timestamp> origin;
 
+  const std::vector<ImuSample>& imu;
+  estimation::ImuNoise imu_noise;
+  std::optional<StateEstimate> last_solved;  // guarded by m
+  std::vector<double> prediction_s, map_latency_ms;
   BoundedQueue<DeviceItem> map_queue, guide_queue;
   std::thread map_thread, guide_thread;
   std::mutex m;  // guards what both threads touch: newest, pending_events, log, first_error
@@ -308,6 +343,8 @@ DeviceRun::~DeviceRun() { impl_->stop_threads(); }
 void DeviceRun::on_estimate(const StateEstimate& estimate, Clock::time_point arrival) {
   impl_->on_estimate(estimate, arrival);
 }
+
+void DeviceRun::on_frame_arrival(Timestamp t, Clock::time_point arrival) { impl_->on_frame_arrival(t, arrival); }
 
 const std::map<Timestamp, DeviceRun::StageTimes>& DeviceRun::stage_times() const { return impl_->stage_times; }
 
@@ -349,6 +386,15 @@ nlohmann::ordered_json DeviceRun::finish() {
   j["latency"] = stage_distribution(d.latency_ms);
   j["latency"]["cues"] = d.latency_ms.size();
   j["latency"]["note"] = "wall clock from a sensor frame's arrival to the cue it caused reaching the actuator or speaker";
+  j["latency"]["pose"] = d.options.predict_at_arrival ? "the newest solved estimate carried through the IMU to the frame"
+                                                      : "the frame's solved estimate";
+  if (d.options.predict_at_arrival) {
+    std::vector<double> ms;
+    for (double v : d.prediction_s) ms.push_back(1e3 * v);
+    j["latency"]["prediction_span_ms"] = stage_distribution(ms);
+  }
+  // When what a frame shows (obstacles) is in the map the planners read.
+  j["map_latency"] = stage_distribution(d.map_latency_ms);
   j["guidance"] = d.stage->summary();
   j["plans"] = {{"made", d.plans}, {"found", d.plans_found}};
   j["cues"] = {{"timeline_entries", d.timeline.size()}, {"events", events.size()}, {"outcomes", counts},

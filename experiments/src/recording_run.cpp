@@ -233,7 +233,7 @@ std::string run_recording(const RecordingRunOptions& a) {
   }
   std::filesystem::create_directories(a.out);
 
-  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}};
+  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}, {}};
   if (source) {
     pipeline_input.source = &*source;
     pipeline_input.load_images = &load_tracking_images;
@@ -269,6 +269,8 @@ std::string run_recording(const RecordingRunOptions& a) {
     device_options.drop_when_full = a.realtime;
     device_options.queue_capacity = a.device_queue;
     device_options.figures = a.plot;
+    const bool prediction = config.get_bool("device.realtime_prediction", true);
+    device_options.predict_at_arrival = a.realtime && prediction;
     device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,
                                              device_options);
     config.reject_unknown_keys();
@@ -276,6 +278,10 @@ std::string run_recording(const RecordingRunOptions& a) {
       seen.push_back(e);
       device_run->on_estimate(e, arrival);
     };
+    if (device_options.predict_at_arrival)
+      pipeline_input.on_frame_arrival = [&](Timestamp t, std::chrono::steady_clock::time_point arrival) {
+        device_run->on_frame_arrival(t, arrival);
+      };
   }
   PipelineResult result;
   try {
@@ -513,7 +519,7 @@ std::string run_recording(const RecordingRunOptions& a) {
     nlohmann::ordered_json stages = stage_summary(result.frames);
     for (auto& [name, value] : d["stages"].items()) stages[name] = value;
     j["stages"] = stages;
-    for (const char* key : {"latency", "guidance", "plans", "cues", "estimates", "device_thread"})
+    for (const char* key : {"latency", "map_latency", "guidance", "plans", "cues", "estimates", "device_thread"})
       if (d.contains(key)) j[key] = d[key];
     j["mapping"] = d["mapping"];
     const double span_s = j["pipeline"]["recording_s"].get<double>();

@@ -181,6 +181,16 @@ TEST_F(RunDeviceCli, RealtimeRunsTheStagesOnTheirOwnThreads) {
   EXPECT_EQ(s["device_thread"]["when_full"], "drop the oldest");
   EXPECT_GT(s["latency"]["cues"].get<std::size_t>(), 0u);
   EXPECT_GT(s["latency"]["p99_ms"].get<double>(), 0.0);
+  // The planners acted at each frame's arrival on the newest solved estimate carried through the
+  // IMU; the map followed from the solved ones.
+  EXPECT_NE(s["latency"]["pose"].get<std::string>().find("through the IMU"), std::string::npos);
+  EXPECT_GT(s["latency"]["prediction_span_ms"]["frames"].get<std::size_t>(), 0u);
+  EXPECT_GT(s["map_latency"]["frames"].get<std::size_t>(), 0u);
+  EXPECT_GT(s["plans"]["made"].get<std::size_t>(), 0u);
+
+  const fs::path solved = path("realtime-solved");
+  ASSERT_EQ(run("corridor", "smart-cane", solved, " --no-plot --realtime --set device.realtime_prediction=false").status, 0);
+  EXPECT_EQ(summary(solved)["latency"]["pose"], "the frame's solved estimate");
 }
 
 TEST_F(RunDeviceCli, ARecordingThatCannotServeTheDeviceIsNamed) {

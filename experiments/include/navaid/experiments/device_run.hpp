@@ -28,6 +28,10 @@ struct DeviceRunOptions {
   bool drop_when_full = false;
   std::size_t queue_capacity = 8;  ///< estimates waiting for the device thread
   bool figures = true;             ///< cues.png
+  /// Real time: plan and cue at each camera frame's arrival from the newest solved estimate
+  /// carried to the frame's time through the IMU (estimation/state_prediction.hpp), instead of
+  /// waiting for the frame's solve; the solved estimates build the map.
+  bool predict_at_arrival = false;
 };
 
 class DeviceRun {
@@ -48,6 +52,8 @@ class DeviceRun {
   /// thrown as navaid::Error naming the stage and the frame, here (by the next call when threaded)
   /// or by finish().
   void on_estimate(const StateEstimate& estimate, Clock::time_point arrival);
+  /// With predict_at_arrival: a camera frame at `t` arrived (called on the front end's thread).
+  void on_frame_arrival(Timestamp t, Clock::time_point arrival);
 
   /// Waits for the device thread, lets the cues run out, writes the files; returns the summary
   /// (stages, latency, cues, plans, map). Rethrows a stage's error after writing what there is.
