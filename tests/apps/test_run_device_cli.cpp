@@ -4,6 +4,10 @@
 // errors: a recording that cannot serve the device, a stage failing mid-run.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +24,7 @@ namespace fs = std::filesystem;
 using navaid::testing::navaid_cli;
 using navaid::testing::read_text;
 using navaid::testing::ScratchDir;
+using navaid::testing::write_text;
 
 namespace {
 
@@ -56,20 +61,36 @@ std::size_t data_rows(const fs::path& file) {
 class RunDeviceCli : public ::testing::Test {
  protected:
   // Short rendered walks (320x240 at 10 Hz, the presets' estimator rate): the Smart Cane corridor,
-  // the BYU obstacle course and a W-ROMA lab walk, each with its default mount.
+  // the BYU obstacle course, a W-ROMA lab walk and eLabrador's route 1, each with its default
+  // mount. CTest runs every test in a process of its own: the walks are rendered once per build of
+  // navaid into a shared folder (named by the program's time stamp, locked while it is made).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("run_device_cli");
-    for (const auto& [scenario, seconds] : std::vector<std::pair<std::string, int>>{
-             {"corridor", 6}, {"obstacle-course", 6}, {"lab-walk-1", 6}, {"route1", 4}}) {
-      const auto sim = navaid_cli("simulate --scenario " + scenario + " --seed 3 --threads 2 --out '" +
-                                  recording(scenario).string() + "' --set duration=" + std::to_string(seconds) +
-                                  " --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=10");
-      ASSERT_EQ(sim.status, 0) << sim.output;
+    const auto stamp = fs::last_write_time(NAVAID_CLI_PATH).time_since_epoch().count();
+    recordings_ = fs::temp_directory_path() / ("navaid-test-device-walks-" + std::to_string(stamp));
+    const std::string lock_file = recordings_.string() + ".lock";
+    const int lock = ::open(lock_file.c_str(), O_CREAT | O_RDWR, 0644);
+    ASSERT_GE(lock, 0) << lock_file;
+    ASSERT_EQ(::flock(lock, LOCK_EX), 0);
+    if (!fs::exists(recordings_ / "complete")) {
+      fs::remove_all(recordings_);
+      for (const auto& [scenario, seconds] : std::vector<std::pair<std::string, int>>{
+               {"corridor", 6}, {"obstacle-course", 6}, {"lab-walk-1", 6}, {"route1", 4}}) {
+        const auto sim = navaid_cli("simulate --scenario " + scenario + " --seed 3 --threads 2 --out '" +
+                                    recording(scenario).string() + "' --set duration=" + std::to_string(seconds) +
+                                    " --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=10");
+        if (sim.status != 0) {
+          ::close(lock);
+          FAIL() << sim.output;
+        }
+      }
+      write_text(recordings_ / "complete", "");
     }
+    ::close(lock);
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
-  static fs::path recording(const std::string& scenario) { return *dir_ / ("sim-" + scenario); }
+  static fs::path recording(const std::string& scenario) { return recordings_ / ("sim-" + scenario); }
   static fs::path path(const std::string& name) { return *dir_ / name; }
   static navaid::testing::CliRun run(const std::string& scenario, const std::string& device, const fs::path& out,
                                      const std::string& extra = {}) {
@@ -79,9 +100,11 @@ class RunDeviceCli : public ::testing::Test {
   static nlohmann::json summary(const fs::path& out) { return nlohmann::json::parse(read_text(out / "summary.json")); }
 
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path recordings_;
 };
 
 std::unique_ptr<ScratchDir> RunDeviceCli::dir_;
+fs::path RunDeviceCli::recordings_;
 
 TEST_F(RunDeviceCli, SmartCaneRunsEveryLayerAndWritesTheRunFolder) {
   const fs::path out = path("smart-cane");
