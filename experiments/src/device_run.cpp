@@ -95,7 +95,7 @@ struct DeviceRun::Impl {
         newest(std::make_shared<MapSnapshot>()) {
     if (spec.speech == "text") speech_config.text_only = true;
     if (spec.speech != "off") speech = std::make_unique<interaction::SynthesizedSpeech>(speech_config);
-    session = std::make_unique<interaction::CueSession>(generator, policy, *device, speech.get());
+    session = std::make_unique<interaction::CueSession>(generator, policy, *device, speech.get(), o.cue_sink);
     for (const auto& f : recording.frames)
       if (f.camera == camera.name) frame_at[f.t] = &f;
     plans_csv = open_csv(out / "plans.csv", "t_ns,planner,status,reason,length_m,expanded,time_ms,path");
@@ -192,6 +192,15 @@ struct DeviceRun::Impl {
     f.reason = std::string(planning::to_string(g.command.reason));
     f.detail = g.command.detail;
     std::lock_guard<std::mutex> lock(m);
+    const auto added = options.threaded ? added_frames.end() : added_frames.find(item.frame->t);
+    if (added != added_frames.end()) {
+      RgbdFrame& done = *added->second;  // mapped and guided on one thread: its images are done with
+      done.depth = {};
+      done.intensity = {};
+      done.labels.reset();
+      done.label_confidence.reset();
+      done.class_probabilities.reset();
+    }
     FrameLog& l = log[e.t];
     f.mapped = l.mapped;
     f.times.mapping_ms = l.times.mapping_ms;
@@ -204,9 +213,20 @@ struct DeviceRun::Impl {
     return *origin;
   }
 
+  void add_frame(RgbdFrame frame) {
+    std::lock_guard<std::mutex> lock(m);
+    auto owned = std::make_unique<RgbdFrame>(std::move(frame));
+    frame_at[owned->t] = owned.get();
+    added_frames[owned->t] = std::move(owned);
+  }
+
   void on_estimate(const StateEstimate& e, Clock::time_point arrival) {
     if (error()) std::rethrow_exception(error());  // stops the estimator: the run ends at the failed stage
-    const auto it = frame_at.find(e.t);
+    std::map<Timestamp, const RgbdFrame*>::const_iterator it;
+    {
+      std::lock_guard<std::mutex> lock(m);
+      it = frame_at.find(e.t);
+    }
     if (it == frame_at.end()) {
       ++without_frame;
       return;
@@ -310,6 +330,7 @@ struct DeviceRun::Impl {
   MapSession map;
   std::unique_ptr<GuidanceStage> stage;
   std::map<Timestamp, const RgbdFrame*> frame_at;
+  std::map<Timestamp, std::unique_ptr<RgbdFrame>> added_frames;  // add_frame's, guarded by m
   std::ofstream plans_csv, latency_csv;
   std::vector<interaction::GuidanceTimelineEntry> timeline;
   std::vector<double> mapping_ms, planning_ms, interaction_ms, latency_ms;
@@ -345,6 +366,8 @@ void DeviceRun::on_estimate(const StateEstimate& estimate, Clock::time_point arr
 }
 
 void DeviceRun::on_frame_arrival(Timestamp t, Clock::time_point arrival) { impl_->on_frame_arrival(t, arrival); }
+
+void DeviceRun::add_frame(RgbdFrame frame) { impl_->add_frame(std::move(frame)); }
 
 const std::map<Timestamp, DeviceRun::StageTimes>& DeviceRun::stage_times() const { return impl_->stage_times; }
 

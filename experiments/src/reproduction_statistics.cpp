@@ -119,6 +119,17 @@ MeanInterval mean_interval(const std::vector<double>& values, double level) {
   return r;
 }
 
+ProportionInterval wilson_interval(std::size_t k, std::size_t n, double level) {
+  require_level(level);
+  if (n == 0 || k > n) throw Error("a proportion needs 0 <= k <= n and n > 0");
+  // The normal quantile as the t quantile's limit (a million degrees of freedom: equal to 1e-6).
+  const double z = student_t_quantile(0.5 * (1.0 + level), 1e6);
+  const double nn = static_cast<double>(n), p = static_cast<double>(k) / nn, z2 = z * z;
+  const double centre = (p + z2 / (2 * nn)) / (1 + z2 / nn);
+  const double half = z * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn)) / (1 + z2 / nn);
+  return {n, k, p, std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
 RelativeChange relative_change_paired_t(const std::vector<double>& method, const std::vector<double>& baseline,
                                         double level) {
   require_level(level);

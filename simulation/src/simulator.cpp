@@ -19,6 +19,7 @@
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/simulation/frame_rng.hpp"
 #include "navaid/simulation/render_cache.hpp"
+#include "navaid/simulation/sensor_streams.hpp"
 #include "navaid/simulation/time_grid.hpp"
 #include "navaid/simulation/top_view.hpp"
 
@@ -27,35 +28,6 @@ namespace navaid::simulation {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Independent engines per model, all derived from the one noise seed.
-enum class ModelStream : std::uint64_t { kImu = 101, kGps = 102, kMag = 103, kFeatures = 104, kBiases = 105 };
-std::uint64_t model_seed(std::uint64_t seed, ModelStream s) { return mix64(mix64(seed) ^ static_cast<std::uint64_t>(s)); }
-
-// Moving objects farther than this from the camera cannot appear in its depth range or block a
-// nearby landmark; leaving them out keeps the per-frame BVH tiny.
-constexpr double kMovingObjectRadiusM = 40.0;
-
-std::optional<RayCaster> moving_caster(const Scenario& scenario, double t_s, const Vec3& near_W) {
-  std::vector<MovingObject> nearby;
-  for (const auto& m : scenario.moving)
-    if ((moving_position(m, t_s) - near_W.head<2>()).norm() < kMovingObjectRadiusM) nearby.push_back(m);
-  if (nearby.empty()) return std::nullopt;
-  return RayCaster(moving_world(nearby, t_s));
-}
-
-// Camera frames carry the camera clock: taken at trajectory time t (IMU clock), stamped t - offset.
-Timestamp camera_stamp(const SimulationConfig& c, Timestamp t) {
-  return kSimulationEpoch + t - seconds_to_ns(c.camera_time_offset_s);
-}
-
-ImageF32 quantize_depth(const ImageF32& depth, double unit_m) {
-  // Through the same integer units as the cache, so cached and fresh renderings agree exactly.
-  const ImageU16 raw = io::depth_to_png_units(depth, unit_m, "<rendered depth>");
-  ImageF32 out(raw.width, raw.height, 1);
-  for (std::size_t i = 0; i < raw.pixels.size(); ++i) out.pixels[i] = static_cast<float>(raw.pixels[i] * unit_m);
-  return out;
-}
 
 std::string render_key(const Scenario& scenario, const SimulationConfig& c, const std::vector<Timestamp>& times) {
   const auto& cam = c.camera;
@@ -202,12 +174,6 @@ void write_confusion_matrix(const fs::path& file, const ConfusionMatrix& m) {
 void write_top_view(const Scenario& scenario, const RayCaster& world, const std::vector<Vec2>& walked, const fs::path& file) {
   const double width_m = scenario.extent.max.x() - scenario.extent.min.x();
   io::write_png(file.string(), render_top_view(world, scenario_map_options(scenario, std::min(1200.0, width_m / 0.02), &walked)).image, 6);
-}
-
-ImuModelOptions imu_options(const SimulationConfig& config) {
-  ImuModelOptions o = config.imu_options;
-  o.seed = model_seed(config.seed, ModelStream::kImu);
-  return o;
 }
 
 }  // namespace

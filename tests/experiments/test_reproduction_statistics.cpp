@@ -129,3 +129,21 @@ TEST(ReproductionStatistics, BadInputIsAnError) {
   EXPECT_THROW(relative_change_bootstrap({1.0, 2.0}, {1.0, INFINITY}), Error);
   EXPECT_THROW(relative_change_bootstrap({1.0, 2.0}, {1.0, 2.0}, 0.95, 50), Error);
 }
+
+TEST(ReproductionStatistics, WilsonIntervalsOfProportions) {
+  // Closed forms: 0 of n gives [0, z^2 / (n + z^2)]; n of n the mirror image.
+  const double z2 = 1.959963984540054 * 1.959963984540054;
+  const ProportionInterval none = wilson_interval(0, 10);
+  EXPECT_EQ(none.rate, 0.0);
+  EXPECT_NEAR(none.low, 0.0, 1e-12);
+  EXPECT_NEAR(none.high, z2 / (10 + z2), 1e-6);
+  const ProportionInterval all = wilson_interval(10, 10);
+  EXPECT_NEAR(all.low, 1.0 - none.high, 1e-9);
+  EXPECT_NEAR(all.high, 1.0, 1e-12);
+  // 8 of 10 (statsmodels proportion_confint(8, 10, method="wilson")).
+  const ProportionInterval eight = wilson_interval(8, 10);
+  EXPECT_NEAR(eight.low, 0.4901625, 1e-5);
+  EXPECT_NEAR(eight.high, 0.9433178, 1e-5);
+  EXPECT_THROW(wilson_interval(1, 0), Error);
+  EXPECT_THROW(wilson_interval(11, 10), Error);
+}

@@ -47,7 +47,9 @@ double ellipsoid_distance(const Ellipsoid& e, const Vec2& p, double z_lo, double
   return std::max(0.0, ((a + t * ab).norm() - 1.0) * e.radii.minCoeff());
 }
 
-double distance_to(const Shape& shape, const Vec2& p, double z_lo, double z_hi) {
+}  // namespace
+
+double horizontal_distance(const Shape& shape, const Vec2& p, double z_lo, double z_hi) {
   auto band_overlap = [&](double lo, double hi) { return hi > z_lo && lo < z_hi; };
   return std::visit(
       [&](const auto& s) -> double {
@@ -78,15 +80,13 @@ double distance_to(const Shape& shape, const Vec2& p, double z_lo, double z_hi) 
       shape);
 }
 
-}  // namespace
-
 double horizontal_clearance(const World& world, const Vec2& p, double ground_z_m, const ClearanceBand& band,
                             const std::vector<std::uint32_t>& ignore) {
   const double z_lo = ground_z_m + band.z_min_m, z_hi = ground_z_m + band.z_max_m;
   double best = kInf;
   for (std::uint32_t i = 0; i < world.size(); ++i) {
     if (std::find(ignore.begin(), ignore.end(), i) != ignore.end()) continue;
-    best = std::min(best, distance_to(world.primitive(i).shape, p, z_lo, z_hi));
+    best = std::min(best, horizontal_distance(world.primitive(i).shape, p, z_lo, z_hi));
   }
   return best;
 }

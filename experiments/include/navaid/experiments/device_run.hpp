@@ -8,6 +8,7 @@
 // (docs/full-device-runs.md).
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "navaid/core/state_estimate.hpp"
 #include "navaid/experiments/device_preset.hpp"
 #include "navaid/experiments/map_session.hpp"
+#include "navaid/interaction/cue_scheduler.hpp"
 #include "navaid/io/recording.hpp"
 
 namespace navaid::experiments {
@@ -32,6 +34,9 @@ struct DeviceRunOptions {
   /// carried to the frame's time through the IMU (estimation/state_prediction.hpp), instead of
   /// waiting for the frame's solve; the solved estimates build the map.
   bool predict_at_arrival = false;
+  /// Sees every cue event as the cue session makes it (a simulated user in closed loop feels and
+  /// hears them there).
+  std::function<void(const interaction::CueEvent&)> cue_sink;
 };
 
 class DeviceRun {
@@ -46,6 +51,11 @@ class DeviceRun {
   ~DeviceRun();
   DeviceRun(const DeviceRun&) = delete;
   DeviceRun& operator=(const DeviceRun&) = delete;
+
+  /// A camera frame made while the run goes (the closed loop renders them), in memory or on disk,
+  /// for the estimates of its time; the recording's own frames are known from the start. Unthreaded,
+  /// its images are released once its estimate has been through every stage.
+  void add_frame(RgbdFrame frame);
 
   /// One estimate, with the wall-clock time its sensor frame arrived (for the frame-to-cue latency).
   /// Estimates without a frame of the device's camera are counted and skipped. A stage's error is

@@ -30,6 +30,15 @@ struct MeanInterval {
 /// Throws navaid::Error on an empty sample, a non-finite value or a level outside (0, 1).
 MeanInterval mean_interval(const std::vector<double>& values, double level = 0.95);
 
+/// A proportion k / n with Wilson's score interval (good at 0 % and 100 %, where the normal
+/// approximation collapses to a point).
+struct ProportionInterval {
+  std::size_t n = 0, k = 0;
+  double rate = 0, low = 0, high = 0;
+};
+/// Throws navaid::Error when n = 0, k > n or the level is outside (0, 1).
+ProportionInterval wilson_interval(std::size_t k, std::size_t n, double level = 0.95);
+
 /// A relative change of `method` against `baseline` (negative = method lower, i.e. better for an
 /// error metric), as a fraction, with a two-sided confidence interval.
 struct RelativeChange {

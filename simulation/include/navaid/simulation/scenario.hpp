@@ -111,6 +111,12 @@ struct ClearanceBand {
   double z_max_m = 2.0;   ///< head of a tall walker plus margin
 };
 
+/// Horizontal distance [m] from the vertical segment at p between heights z_lo and z_hi (absolute,
+/// in W) to one primitive: 0 when the segment is inside it, infinity when the primitive has nothing
+/// between those heights. Exact for upright boxes, cylinders, polygons and ellipsoids; a lower bound
+/// otherwise (tilted shapes by their bounding box).
+double horizontal_distance(const Shape& shape, const Vec2& p, double z_lo, double z_hi);
+
 /// Smallest horizontal distance [m] from the vertical segment at p (z in the band, relative to
 /// ground_z) to any primitive of `world` not listed in `ignore` (0 when inside one). Boxes and
 /// ellipsoids are taken exactly when upright (yaw only), conservatively otherwise.

@@ -1,0 +1,342 @@
+#include "navaid/experiments/closed_loop_trial.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <fstream>
+
+#include "navaid/core/errors.hpp"
+#include "navaid/estimation/estimator_config.hpp"
+#include "navaid/estimation/frontend/image_feature_source.hpp"
+#include "navaid/estimation/sliding_window_estimator.hpp"
+#include "navaid/experiments/cue_perception.hpp"
+#include "navaid/experiments/device_preset.hpp"
+#include "navaid/experiments/device_run.hpp"
+#include "navaid/mapping/segmentation_link.hpp"
+#include "navaid/planning/path_guidance.hpp"
+#include "navaid/simulation/online_sensors.hpp"
+#include "navaid/simulation/person_motion.hpp"
+#include "navaid/simulation/simulation_config.hpp"
+
+namespace navaid::experiments {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// The mount a device is worn on: the belt's camera on the helmet, the wheel's and the rumble's on
+/// the cane, the hand unit's in the hand.
+std::string device_mount(interaction::DeviceKind actuator) {
+  switch (actuator) {
+    case interaction::DeviceKind::kBelt: return "head";
+    case interaction::DeviceKind::kWheel:
+    case interaction::DeviceKind::kRumble: return "cane";
+    case interaction::DeviceKind::kHand: return "hand";
+  }
+  return "cane";
+}
+
+std::ofstream open_csv(const fs::path& file, const char* header) {
+  std::ofstream out(file);
+  if (!out) throw IoError(file.string(), "cannot write");
+  out << header << "\n";
+  return out;
+}
+
+/// The scenario keys of the trial as a simulated recording's simulation.yaml has them, so that the
+/// device's stages find the scenario (its streets, its path) as they do for `navaid simulate`'s.
+void write_simulation_yaml(const fs::path& file, const std::string& scenario, const simulation::ScenarioOptions& o) {
+  std::ofstream y(file);
+  if (!y) throw IoError(file.string(), "cannot write");
+  y << "# the closed-loop trial's world (navaid trial)\n"
+    << "scenario: " << scenario << "\nsimulation:\n  world_seed: " << o.seed << "\n  people: " << (o.people ? "true" : "false")
+    << "\n  vehicles: " << (o.vehicles ? "true" : "false") << "\n  targets: " << (o.targets ? "true" : "false") << "\n";
+}
+
+}  // namespace
+
+TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
+  const auto wall0 = Clock::now();
+  Config config = spec.config;
+  config.apply_override("scenario=" + spec.scenario);
+  config.apply_override(fmt::format("simulation.world_seed={}", spec.world_seed));
+  config.apply_override(fmt::format("seed={}", spec.seed));
+  const bool with_device = config.has("device.name");
+  if (with_device && !config.has("mount")) {
+    const auto actuator = interaction::device_kind_from_string(config.get_string("device.actuator"));
+    if (actuator) config.apply_override("mount=" + device_mount(*actuator));
+  }
+  const simulation::ScenarioOptions scenario_options = simulation::read_scenario_options(config);
+  const simulation::Scenario scenario =
+      simulation::make_scenario(simulation::read_scenario_name(config), scenario_options);
+  if (scenario.kind != simulation::ScenarioKind::kWalk)
+    throw UsageError("scenario " + scenario.name + " is a planner map, not a walk: a trial needs a walk scenario");
+  simulation::SimulationConfig sim = simulation::read_simulation_config(config, scenario);
+  simulation::UserModel user_model = simulation::read_user_model(config);
+
+  // The trial's own keys.
+  const double goal_radius = config.get_double("trial.goal_radius_m", 0.6, {0.1, 5.0});
+  const int render_width = static_cast<int>(config.get_int("trial.render_width", 160, 16, 4096));
+  const double contact_rate = config.get_double("trial.contact_rate_hz", 20.0, {1.0, 1000.0});
+  const double check_m = config.get_double("trial.guidance_check_m", 0.7, {0.05, 10.0});
+  const double camera_rate = with_device ? config.get_double("frontend.rate_hz", sim.camera.rate_hz, {1.0, 200.0})
+                                         : sim.camera.rate_hz;
+
+  // Start, goal and the nominal walk (the landmarks lie along it; the timeout scales with it).
+  const simulation::Vec2 start = scenario.path.front(), goal = scenario.path.back();
+  const simulation::Vec2 first_leg = scenario.path[1] - start;
+  const double start_heading = std::atan2(first_leg.y(), first_leg.x());
+  simulation::WalkerConfig walker = sim.walker;
+  walker.ground_z_m = scenario.ground_z_m;
+  const simulation::WalkerTrajectory nominal(scenario.path, walker);
+  const double timeout_s =
+      config.get_double("trial.timeout_s", 3.0 * nominal.length() / user_model.speed_mps + 20.0, {1.0, 36000.0});
+
+  std::optional<DeviceSpec> device;
+  if (with_device) {
+    if (!config.has("device.goal_start_frame_m")) {
+      // The goal in the start pose's frame, as a user would tell the cane where to go.
+      const simulation::Vec2 rel = Eigen::Rotation2Dd(-start_heading) * (goal - start);
+      config.apply_override(fmt::format("device.goal_start_frame_m=[{:.6f},{:.6f}]", rel.x(), rel.y()));
+    }
+    device = read_device_spec(config);
+    if (device->guidance == GuidanceKind::kRoute || device->guidance == GuidanceKind::kHandTarget)
+      throw Error(fmt::format("device {}: its {} guidance does not run in closed loop yet (GPS and magnetometer "
+                              "streams and the hand's reach are not simulated online); trials support walking-path "
+                              "and obstacle-rumble devices",
+                              device->name, to_string(device->guidance)));
+  }
+  // Cane users find their own way to the goal; so does the augmented cane's user, toward the
+  // music source (the cane only warns); a device with a path or route leads.
+  const bool goal_known = !device || device->guidance == GuidanceKind::kObstacleRumble;
+
+  // What the camera renders for mapping: the same lens at a lower resolution (trial.render_width).
+  CameraCalibration render_camera = sim.camera;
+  if (render_width < sim.camera.width) {
+    const int h = static_cast<int>(std::lround(1.0 * sim.camera.height * render_width / sim.camera.width));
+    render_camera = simulation::rescale_camera(sim.camera, render_width, h);
+  }
+  sim.render.render_intensity = false;  // mapping reads depth and labels
+
+  fs::create_directories(out);
+  write_simulation_yaml(out / "simulation.yaml", scenario.name, scenario_options);
+
+  // The device: the estimator on the rig's IMU and feature observations, the full-device pipeline.
+  std::optional<estimation::SlidingWindowEstimator> estimator;
+  std::unique_ptr<DeviceRun> device_run;
+  io::Recording recording;
+  recording.format = "navaid";
+  recording.origin = scenario.origin;
+  recording.calibration.cameras = {sim.camera};
+  recording.calibration.imu = sim.imu;
+  std::deque<simulation::Instruction> felt;
+  double trial_clock_s = 0;
+  if (device) {
+    estimation::read_frontend_config(config);  // a preset's front-end keys: the trial feeds features
+    estimator.emplace(recording.calibration, estimation::read_estimator_config(config), sim.camera.name,
+                      recording.origin);
+    MapSessionOptions map_options{1.0, 5.0, false, 0};
+    read_obstacle_options(config, map_options);
+    map_options.network = mapping::read_segmentation_link_config(config);
+    config.get_bool("mapping.enabled", true);
+    DeviceRunOptions options;
+    options.threaded = false;  // deterministic, and the person reacts to this frame's cues
+    options.figures = false;
+    options.cue_sink = [&felt, &trial_clock_s](const interaction::CueEvent& ev) {
+      const double t_s = ns_to_seconds(ev.t - simulation::kSimulationEpoch);
+      if (auto i = perceive_cue(ev, std::max(t_s, trial_clock_s))) felt.push_back(*i);
+    };
+    device_run = std::make_unique<DeviceRun>(*device, config, recording, out, render_camera, out, map_options, options);
+  }
+  config.reject_unknown_keys();
+  {
+    std::ofstream(out / "config.yaml") << config.dump();
+  }
+
+  // The person.
+  simulation::PersonMotionConfig motion = user_model.motion;
+  motion.mount_height_m = sim.mount.height_m;
+  motion.ground_z_m = scenario.ground_z_m;
+  motion.scan_amplitude_rad = sim.mount.scan_amplitude_rad;
+  motion.scan_period_s = sim.mount.scan_period_s;
+  const std::uint64_t person_seed = spec.seed * 0x9E3779B97F4A7C15ULL + 17;
+  simulation::PersonMotion body(motion, start, start_heading, person_seed);
+  // The long cane: swept by cane users and by the augmented cane's user (it is their cane); the
+  // Smart Cane rolls its wheel instead. user.cane.enabled says otherwise.
+  if (!config.has("user.cane.enabled")) user_model.cane.enabled = goal_known;
+  simulation::SimulatedUser user(user_model, goal_known, goal, person_seed + 1);
+  simulation::ContactMonitor contacts(scenario.world, scenario.ground_z_m, user_model.body, user_model.cane);
+  std::optional<simulation::OnlineSensors> sensors;
+  if (device) sensors.emplace(scenario, sim, nominal, render_camera);
+
+  TrialResult r;
+  std::ofstream track = open_csv(out / "track.csv", "t_s,x,y,heading_deg,speed_mps,veer_deg,est_x,est_y,est_heading_deg,est_mode");
+  std::ofstream instructions = open_csv(out / "instructions.csv", "t_s,kind,value");
+  std::ofstream contact_csv = open_csv(out / "contacts.csv", "t_s,part,semantic,moving,primitive,height_m,x,y");
+  bool pointing_into_obstacle = false;
+  // Where an instruction sends the person, in W, from their true heading; none for stop and wait.
+  const auto instructed_heading = [&body](const simulation::Instruction& i) -> std::optional<double> {
+    using K = simulation::Instruction::Kind;
+    switch (i.kind) {
+      case K::kGo:
+      case K::kSteer: return body.heading() + i.value;
+      case K::kKeepGoing: return body.heading();
+      case K::kTurnToward: return body.heading() + (i.value >= 0 ? 1.0 : -1.0) * M_PI / 4;
+      default: return std::nullopt;
+    }
+  };
+
+  const double imu_rate = sim.imu.rate_hz;
+  const Timestamp imu_dt_ns = seconds_to_ns(1.0 / imu_rate);
+  const Timestamp camera_dt_ns = seconds_to_ns(1.0 / camera_rate);
+  const Timestamp contact_dt_ns = seconds_to_ns(1.0 / contact_rate);
+  const Timestamp begin = -seconds_to_ns(sim.still_time_s);
+  Timestamp next_camera = begin, next_contact = begin, next_track = begin;
+  std::uint64_t frame_index = 0;
+  double sensor_s = 0, estimator_s = 0, device_s = 0, person_s = 0;
+  double walking_s = 0;
+  std::optional<double> walked_off;
+  std::optional<StateEstimate> last_estimate;
+  const double dt = ns_to_seconds(imu_dt_ns);
+  for (Timestamp t = begin;; t += imu_dt_ns) {
+    const double t_s = ns_to_seconds(t);
+    trial_clock_s = t_s;
+    auto tp = Clock::now();
+    while (!felt.empty()) {
+      const simulation::Instruction i = felt.front();
+      felt.pop_front();
+      instructions << fmt::format("{:.3f},{},{:.4f}\n", i.t_s, to_string(i.kind), i.value);
+      user.perceive(i);
+      if (const auto heading = instructed_heading(i)) {
+        const auto blocked = contacts.blocked_along(body.position(), *heading, check_m);
+        if (blocked && !pointing_into_obstacle)
+          r.into_obstacle.push_back({i.t_s, std::string(to_string(i.kind)), *heading * 180.0 / M_PI, *blocked,
+                                     std::string(simulation::semantic_class_name(
+                                         scenario.world.primitive(*blocked).surface.semantic))});
+        pointing_into_obstacle = blocked.has_value();
+      }
+    }
+    simulation::MotionCommand command = user.decide(t_s, body, contacts.cane_touch());
+    if (t_s < 0) command.speed_mps = 0;  // the still start
+    if (t > begin) body.step(command, dt);
+    const simulation::KinematicState state = body.state();
+    if (body.speed() > 0.05) {
+      walking_s += dt;
+      if (!walked_off) walked_off = t_s;
+    }
+    if (t >= next_contact) {
+      next_contact += contact_dt_ns;
+      const simulation::World moving = simulation::moving_world(scenario.moving, t_s);
+      for (const auto& c : contacts.update(t_s, body.position(), body.heading(), moving)) {
+        r.contacts.push_back(c);
+        (c.part == simulation::BodyPart::kCane ? r.cane_contacts : r.body_contacts) += 1;
+        contact_csv << fmt::format("{:.3f},{},{},{},{},{:.3f},{:.3f},{:.3f}\n", c.t_s, to_string(c.part),
+                                   simulation::semantic_class_name(c.semantic), c.moving ? 1 : 0, c.primitive,
+                                   c.height_m, c.where_W.x(), c.where_W.y());
+      }
+    }
+    if (t >= next_track) {
+      next_track += seconds_to_ns(0.1);
+      track << fmt::format("{:.3f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}", t_s, body.position().x(), body.position().y(),
+                           body.heading() * 180.0 / M_PI, body.speed(), body.veer() * 180.0 / M_PI);
+      // What the device believes: its newest estimate, in its own world frame.
+      if (last_estimate)
+        track << fmt::format(",{:.4f},{:.4f},{:.3f},{}\n", last_estimate->T_W_B.t.x(), last_estimate->T_W_B.t.y(),
+                             planning::body_yaw(last_estimate->T_W_B) * 180.0 / M_PI, to_string(last_estimate->mode));
+      else
+        track << ",,,,\n";
+    }
+    person_s += seconds_since(tp);
+
+    if (device) {
+      tp = Clock::now();
+      const ImuSample imu = sensors->imu(state, t);
+      std::vector<StateEstimate> estimates = estimator->process(imu);
+      std::optional<RgbdFrame> frame;
+      FeatureFrame features;
+      const bool camera_tick = t >= next_camera;
+      if (camera_tick) {
+        next_camera += camera_dt_ns;
+        features = sensors->features(state.T_W_B, t);
+        frame = sensors->rgbd(state.T_W_B, t, frame_index++);
+      }
+      sensor_s += seconds_since(tp);
+      tp = Clock::now();
+      if (camera_tick) {
+        auto more = estimator->process(features);
+        estimates.insert(estimates.end(), more.begin(), more.end());
+      }
+      estimator_s += seconds_since(tp);
+      tp = Clock::now();
+      if (frame) device_run->add_frame(std::move(*frame));
+      for (const StateEstimate& e : estimates) device_run->on_estimate(e, Clock::now());
+      if (!estimates.empty()) last_estimate = estimates.back();
+      device_s += seconds_since(tp);
+    }
+
+    const double to_goal = (body.position() - goal).norm();
+    if (to_goal <= goal_radius || user.arrived()) {
+      r.success = to_goal <= goal_radius;
+      r.outcome = r.success ? "arrived" : "stopped-short";
+      break;
+    }
+    if (t_s >= timeout_s) {
+      r.outcome = "timeout";
+      break;
+    }
+  }
+  const double end_s = ns_to_seconds(next_track) - 0.1;
+  nlohmann::ordered_json device_summary;
+  if (device_run) {
+    const auto tp = Clock::now();
+    device_summary = device_run->finish();
+    device_s += seconds_since(tp);
+  }
+
+  r.duration_s = walked_off ? std::max(0.0, end_s - *walked_off) : 0.0;
+  r.path_length_m = body.distance_walked();
+  r.mean_speed_mps = walking_s > 0 ? r.path_length_m / walking_s : 0.0;
+  r.user = user.counts();
+  r.goal_distance_m = (body.position() - goal).norm();
+  r.wall_s = seconds_since(wall0);
+
+  nlohmann::ordered_json j;
+  j["scenario"] = scenario.name;
+  j["world_seed"] = scenario.seed;
+  j["seed"] = spec.seed;
+  j["device"] = device ? device->name : std::string("none");
+  j["user"] = user_model.name;
+  j["cane"] = user_model.cane.enabled;
+  j["success"] = r.success;
+  j["outcome"] = r.outcome;
+  j["duration_s"] = r.duration_s;
+  j["path_length_m"] = r.path_length_m;
+  j["nominal_path_m"] = nominal.length();
+  j["mean_speed_mps"] = r.mean_speed_mps;
+  j["goal_distance_m"] = r.goal_distance_m;
+  nlohmann::ordered_json parts = {{"legs", 0}, {"torso", 0}, {"head", 0}, {"cane", 0}};
+  for (const auto& c : r.contacts) parts[std::string(to_string(c.part))] = parts[std::string(to_string(c.part))].get<int>() + 1;
+  j["contacts"] = {{"body", r.body_contacts}, {"cane", r.cane_contacts}, {"by_part", parts}};
+  nlohmann::ordered_json into = nlohmann::ordered_json::array();
+  for (const auto& g : r.into_obstacle)
+    into.push_back({{"t_s", g.t_s}, {"instruction", g.instruction}, {"direction_deg", g.direction_deg},
+                    {"primitive", g.primitive}, {"semantic", g.semantic}});
+  j["guidance_into_obstacle"] = into;
+  j["user_counts"] = {{"instructions", r.user.instructions}, {"ignored", r.user.ignored},
+                      {"corrections", r.user.corrections}, {"stops", r.user.stops},
+                      {"cane_avoidances", r.user.cane_avoidances}, {"preferred_speed_mps", user.preferred_speed()}};
+  j["time"] = {{"wall_s", r.wall_s}, {"person_and_contacts_s", person_s}, {"sensors_s", sensor_s},
+               {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index}};
+  if (device) j["device_run"] = device_summary;
+  r.summary = j;
+  std::ofstream(out / "summary.json") << j.dump(2) << "\n";
+  return r;
+}
+
+}  // namespace navaid::experiments

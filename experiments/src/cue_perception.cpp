@@ -1,0 +1,65 @@
+#include "navaid/experiments/cue_perception.hpp"
+
+#include <cmath>
+
+#include "navaid/interaction/belt_adapter.hpp"
+#include "navaid/interaction/rumble_adapter.hpp"
+
+namespace navaid::experiments {
+
+namespace {
+
+using interaction::CueKind;
+using simulation::Instruction;
+using K = Instruction::Kind;
+
+std::optional<Instruction> felt(const interaction::ActuatorPattern& p, CueKind kind, double t_s) {
+  if (kind == CueKind::kStop) return Instruction{t_s, K::kStop, 0};
+  if (kind == CueKind::kArrive) return Instruction{t_s, K::kArrived, 0};
+  std::vector<int> on;
+  double level = 0;
+  for (const auto& c : p.commands) {
+    if (c.level != 0) on.push_back(c.actuator);
+    level = c.level;
+  }
+  switch (p.device) {
+    case interaction::DeviceKind::kBelt: {
+      if (on.size() != 1) return std::nullopt;
+      // Vibrators from the left (+90 deg) to the right (-90 deg); the front one: keep going.
+      static constexpr double kAngle[interaction::BeltAdapter::kCount] = {M_PI / 2, M_PI / 4, 0, -M_PI / 4, -M_PI / 2};
+      if (on.front() == interaction::BeltAdapter::kFront) return Instruction{t_s, K::kKeepGoing, 0};
+      return Instruction{t_s, K::kGo, kAngle[on.front()]};
+    }
+    case interaction::DeviceKind::kWheel:
+      return Instruction{t_s, K::kSteer, on.empty() ? 0.0 : level * 1e-3};
+    case interaction::DeviceKind::kRumble: {
+      if (on.empty()) return Instruction{t_s, K::kClear, 0};
+      if (on.size() == 2) return Instruction{t_s, K::kHalt, 0};
+      return Instruction{t_s, K::kTurnToward, on.front() == interaction::RumbleAdapter::kLeft ? 1.0 : -1.0};
+    }
+    case interaction::DeviceKind::kHand:
+      return std::nullopt;  // the hand reaches, the body does not walk by it
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<Instruction> perceive_cue(const interaction::CueEvent& ev, double t_s) {
+  using interaction::CueOutcome;
+  if (ev.outcome == CueOutcome::kSpoken && ev.cue.message) {
+    const std::string& id = ev.cue.message->id;
+    if (id == "stop") return Instruction{t_s, K::kStop, 0};
+    if (id == "locating") return Instruction{t_s, K::kWait, 0};
+    if (id == "arrived" || id == "target_reached") return Instruction{t_s, K::kArrived, 0};
+    return std::nullopt;
+  }
+  if (ev.outcome == CueOutcome::kSwitchedOff) return Instruction{t_s, K::kClear, 0};
+  // A refresh repeats what is already felt, except the wheel, whose pull is read continuously.
+  const bool fresh = ev.outcome == CueOutcome::kSent ||
+                     (ev.outcome == CueOutcome::kRefreshed && ev.pattern && ev.pattern->device == interaction::DeviceKind::kWheel);
+  if (!fresh || !ev.pattern || !ev.cue.felt) return std::nullopt;
+  return felt(*ev.pattern, ev.cue.kind, t_s);
+}
+
+}  // namespace navaid::experiments

@@ -1,0 +1,68 @@
+#pragma once
+// The simulator stepped online: the sensors of a rig sampled from wherever the body is now, for a
+// closed loop in which the walker's next move depends on what the device said (simulated_user.hpp).
+// The same models as `navaid simulate` (simulator.hpp), fed the same configuration: the IMU with
+// its noise and bias walk, feature observations of landmarks with KLT-like track persistence, and
+// RGB-D frames rendered by ray casting with depth noise, holes and the segmentation's label
+// confusion, people and vehicles included. Frames stay in memory (RgbdFrame's images), nothing is
+// written. Deterministic for a configuration, its seed and the sequence of poses.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "navaid/core/camera.hpp"
+#include "navaid/core/messages.hpp"
+#include "navaid/simulation/feature_simulator.hpp"
+#include "navaid/simulation/imu_model.hpp"
+#include "navaid/simulation/label_confusion_model.hpp"
+#include "navaid/simulation/ray_caster.hpp"
+#include "navaid/simulation/rgbd_renderer.hpp"
+#include "navaid/simulation/scenario.hpp"
+#include "navaid/simulation/simulation_config.hpp"
+#include "navaid/simulation/walker_trajectory.hpp"
+
+namespace navaid::simulation {
+
+class OnlineSensors {
+ public:
+  /// `nominal`: the walk the landmarks are seeded along (the scenario's path); the person may
+  /// stray from it, and sees fewer landmarks where it does. `render_camera`: the camera RGB-D frames
+  /// are rendered with (the same lens at a lower resolution, for speed), config.camera when unset;
+  /// features are always observed with config.camera. Keeps a reference to `scenario`.
+  OnlineSensors(const Scenario& scenario, const SimulationConfig& config, const WalkerTrajectory& nominal,
+                const std::optional<CameraCalibration>& render_camera = std::nullopt);
+  ~OnlineSensors();
+
+  /// The IMU's sample of `body` at trajectory time t [ns] (calls in non-decreasing t).
+  ImuSample imu(const KinematicState& body, Timestamp t);
+  /// Feature observations of the camera on the body at pose T_W_B at trajectory time t.
+  FeatureFrame features(const SE3& T_W_B, Timestamp t);
+  /// The RGB-D frame (depth, labels and their confidence; intensity when config.render asks)
+  /// rendered from T_W_B at trajectory time t, with the frame's number `index`.
+  RgbdFrame rgbd(const SE3& T_W_B, Timestamp t, std::uint64_t index);
+
+  const std::vector<Landmark>& landmarks() const { return landmarks_; }
+  const ImuModel& imu_model() const { return imu_; }
+  const SimulationConfig& config() const { return config_; }
+  const CameraCalibration& render_camera() const { return render_calibration_; }
+
+ private:
+  const Scenario* scenario_;
+  SimulationConfig config_;
+  RayCaster world_;
+  std::unique_ptr<CameraModel> camera_;
+  CameraCalibration render_calibration_;
+  std::unique_ptr<CameraModel> render_camera_;
+  RgbdRenderer renderer_;
+  std::vector<Landmark> landmarks_;
+  FeatureObserver observer_;
+  std::mt19937_64 feature_rng_;
+  ImuModel imu_;
+  LabelConfusionModel confusion_;
+  double depth_unit_m_;
+  RenderedFrame clean_;
+};
+
+}  // namespace navaid::simulation

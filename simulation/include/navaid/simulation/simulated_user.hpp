@@ -1,0 +1,121 @@
+#pragma once
+// A simulated blind or low-vision user in closed loop (docs/simulated-users.md): what they do next
+// depends on what their device told them and what their cane found. They perceive instructions
+// after a reaction delay, follow each with a probability (compliance), turn with an error, walk at
+// their own speed, veer while walking, and avoid what the cane touches. The device layer turns its
+// cues into `Instruction`s as the person would read them (a belt motor, the wheel's pull, a rumble,
+// a spoken word); this class knows nothing of devices.
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "navaid/core/config.hpp"
+#include "navaid/simulation/body_contacts.hpp"
+#include "navaid/simulation/person_motion.hpp"
+
+namespace navaid::simulation {
+
+struct UserModel {
+  std::string name = "typical";
+  double speed_mps = 0.9;            ///< preferred walking speed (blind travellers with a device: 0.6-1.0)
+  double speed_sigma_mps = 0.08;     ///< per-trial spread of the preferred speed
+  double reaction_delay_s = 0.6;     ///< from a cue to the start of the response
+  double reaction_jitter_s = 0.15;   ///< uniform +- spread of the delay
+  double turn_error_sigma_rad = 0.09;  ///< heading error of a turn made on a cue (about 5 deg)
+  double compliance = 0.95;          ///< probability that an instruction is followed
+  double wheel_gain = 2.0;           ///< turn rate [rad/s] per radian of the steering wheel's pull
+  double rumble_turn_rate_rad_s = 0.8;  ///< turning toward the open side while a side rumbles
+  double rumble_speed_factor = 0.4;  ///< walking speed while a side rumbles
+  double cane_stop_s = 0.6;          ///< pause after the cane touches something
+  double cane_turn_rad = 1.0;        ///< turn away from what the cane touched (about 57 deg)
+  double cane_detour_m = 0.8;        ///< walk this far before heading back to the intended way
+  PersonMotionConfig motion;
+  BodyModel body;
+  CaneModel cane;
+};
+
+/// The documented presets: "typical", "cautious" (slower, later, no veer), "hasty" (faster, less
+/// compliant, more veer), "sighted-blindfolded" (blindfolded sighted volunteers as in the seeds'
+/// studies: slow, hesitant, veering, no cane training). UsageError listing them for another name.
+UserModel user_model_preset(std::string_view name);
+std::vector<std::string> user_model_names();
+/// The preset `user.model` (default "typical") with any user.* key of `config` applied.
+UserModel read_user_model(const Config& config);
+
+/// What a person makes of a cue.
+struct Instruction {
+  enum class Kind {
+    kGo,         ///< walk in `value` [rad] relative to the current heading, positive left
+    kKeepGoing,  ///< on course: keep walking as you are
+    kSteer,      ///< the wheel pulls by `value` [rad], positive left (held until the next)
+    kTurnToward, ///< a side rumbles: turn toward `value`'s sign (+1 left, -1 right) while it does
+    kHalt,       ///< both sides rumble / an obstacle with no open side: stop and search
+    kStop,       ///< stop
+    kWait,       ///< "locating": stop until directions come again
+    kArrived,    ///< the goal is reached
+    kClear,      ///< the haptic pattern went off: whatever it said is over
+  };
+  double t_s = 0;
+  Kind kind = Kind::kKeepGoing;
+  double value = 0;
+};
+std::string_view to_string(Instruction::Kind kind);
+
+struct UserCounts {
+  std::size_t instructions = 0;  ///< perceived
+  std::size_t ignored = 0;       ///< not followed (compliance)
+  std::size_t corrections = 0;   ///< direction changes acted on (go > 10 deg, side rumbles, halts)
+  std::size_t stops = 0;
+  std::size_t cane_avoidances = 0;
+};
+
+class SimulatedUser {
+ public:
+  /// `goal_known` false: the person stands until the device gives its first direction and then
+  /// walks as told (a route or a path the device knows). True: they walk toward `goal_W` from the
+  /// start, as a traveller who knows where it lies or hears it (the BYU study's music source), and
+  /// the device's cues turn or stop them only while they last (cane only, the augmented cane).
+  SimulatedUser(const UserModel& model, bool goal_known, const Vec2& goal_W, std::uint64_t seed);
+
+  /// An instruction the device gave at i.t_s; acted on after the reaction delay.
+  void perceive(const Instruction& i);
+
+  /// What the person does over the next step at time t, from where they are and what the cane
+  /// feels (may be empty).
+  MotionCommand decide(double t_s, const PersonMotion& body, const std::optional<CaneTouch>& cane);
+
+  bool arrived() const { return arrived_; }
+  double preferred_speed() const { return speed_; }
+  const UserCounts& counts() const { return counts_; }
+  const UserModel& model() const { return model_; }
+
+ private:
+  void act(const Instruction& i, const PersonMotion& body);
+
+  UserModel model_;
+  bool goal_known_;
+  Vec2 goal_W_;
+  std::mt19937_64 rng_;
+  double speed_ = 0;
+  std::deque<Instruction> pending_;  ///< perceived, to be acted on at their t_s (delay added)
+  // What the person is doing.
+  enum class Mode { kStanding, kWalkHeading, kSteer, kTurnToward, kSearch, kArrived };
+  Mode mode_ = Mode::kStanding;
+  double heading_ = 0, steer_ = 0, turn_side_ = 0;
+  double speed_factor_ = 1.0;
+  bool started_ = false, arrived_ = false;
+  // Avoiding what the cane touched: paused until, then walking the detour heading until the
+  // distance walked passes detour_end.
+  std::optional<double> pause_until_;
+  std::optional<double> detour_heading_;
+  double detour_end_m_ = 0;
+  double avoid_side_ = 1.0;      ///< +1: turning left, away from a touch on the right
+  bool new_direction_ = false;   ///< acted on a new direction since the last decide()
+  UserCounts counts_;
+};
+
+}  // namespace navaid::simulation

@@ -1,0 +1,57 @@
+#include "navaid/simulation/online_sensors.hpp"
+
+#include "navaid/simulation/render_cache.hpp"
+#include "navaid/simulation/rgbd_noise_model.hpp"
+#include "navaid/simulation/sensor_streams.hpp"
+
+namespace navaid::simulation {
+
+OnlineSensors::OnlineSensors(const Scenario& scenario, const SimulationConfig& config, const WalkerTrajectory& nominal,
+                             const std::optional<CameraCalibration>& render_camera)
+    : scenario_(&scenario),
+      config_(config),
+      world_(scenario.world),
+      camera_(make_camera_model(config.camera, "sensor.camera")),
+      render_calibration_(render_camera.value_or(config.camera)),
+      render_camera_(make_camera_model(render_calibration_, "sensor.camera")),
+      renderer_(world_, *render_camera_),
+      landmarks_(generate_landmarks(world_, nominal, config.features, scenario.seed)),
+      observer_(world_, *camera_, landmarks_, config.features),
+      feature_rng_(model_seed(config.seed, ModelStream::kFeatures)),
+      imu_(config.imu, imu_options(config)),
+      confusion_(config.label_confusion),
+      depth_unit_m_(cache_depth_unit_m(config.render.max_depth)) {
+  config_.rgbd_noise.focal_px = render_calibration_.fx;  // disparity noise in the rendered image's pixels
+}
+
+OnlineSensors::~OnlineSensors() = default;
+
+ImuSample OnlineSensors::imu(const KinematicState& body, Timestamp t) { return imu_.measure(body, kSimulationEpoch + t); }
+
+FeatureFrame OnlineSensors::features(const SE3& T_W_B, Timestamp t) {
+  const SE3 T_W_C = T_W_B * config_.camera.T_B_C;
+  const auto moving = moving_caster(*scenario_, ns_to_seconds(t), T_W_C.t);
+  return observer_.observe(camera_stamp(config_, t), T_W_C, feature_rng_, moving ? &*moving : nullptr);
+}
+
+RgbdFrame OnlineSensors::rgbd(const SE3& T_W_B, Timestamp t, std::uint64_t index) {
+  const SE3 T_W_C = T_W_B * config_.camera.T_B_C;
+  const auto moving = moving_caster(*scenario_, ns_to_seconds(t), T_W_C.t);
+  renderer_.render(T_W_C, config_.render, clean_, moving ? &*moving : nullptr);
+  clean_.depth = quantize_depth(clean_.depth, depth_unit_m_);
+  NoisyRgbd noisy = apply_rgbd_noise(clean_, config_.rgbd_noise, config_.seed, index);
+  RgbdFrame f;
+  f.t = camera_stamp(config_, t);
+  f.index = index;
+  f.camera = render_calibration_.name;
+  f.depth = std::move(noisy.depth);
+  if (config_.render.render_intensity) f.intensity = std::move(noisy.intensity);
+  if (!clean_.labels.empty()) {
+    LabelPrediction labels = confusion_.apply(clean_.labels, config_.seed, index);
+    f.labels = std::move(labels.labels);
+    f.label_confidence = std::move(labels.confidence);
+  }
+  return f;
+}
+
+}  // namespace navaid::simulation

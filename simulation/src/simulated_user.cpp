@@ -1,0 +1,276 @@
+#include "navaid/simulation/simulated_user.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "navaid/core/errors.hpp"
+
+namespace navaid::simulation {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+double wrap(double a) {
+  a = std::remainder(a, 2.0 * M_PI);
+  return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+
+}  // namespace
+
+std::string_view to_string(Instruction::Kind kind) {
+  switch (kind) {
+    case Instruction::Kind::kGo: return "go";
+    case Instruction::Kind::kKeepGoing: return "keep-going";
+    case Instruction::Kind::kSteer: return "steer";
+    case Instruction::Kind::kTurnToward: return "turn-toward";
+    case Instruction::Kind::kHalt: return "halt";
+    case Instruction::Kind::kStop: return "stop";
+    case Instruction::Kind::kWait: return "wait";
+    case Instruction::Kind::kArrived: return "arrived";
+    case Instruction::Kind::kClear: return "clear";
+  }
+  return "?";
+}
+
+std::vector<std::string> user_model_names() { return {"typical", "cautious", "hasty", "sighted-blindfolded"}; }
+
+UserModel user_model_preset(std::string_view name) {
+  UserModel m;
+  m.name = std::string(name);
+  m.motion.veer_sigma = 1.5 * kDeg;  // a few degrees of heading error after ten seconds' walk
+  if (name == "typical") return m;
+  if (name == "cautious") {
+    m.speed_mps = 0.65;
+    m.reaction_delay_s = 0.9;
+    m.turn_error_sigma_rad = 4 * kDeg;
+    m.compliance = 0.99;
+    m.motion.veer_sigma = 0.0;
+    return m;
+  }
+  if (name == "hasty") {
+    m.speed_mps = 1.2;
+    m.reaction_delay_s = 0.4;
+    m.turn_error_sigma_rad = 9 * kDeg;
+    m.compliance = 0.85;
+    m.motion.veer_sigma = 3.0 * kDeg;
+    return m;
+  }
+  if (name == "sighted-blindfolded") {
+    m.speed_mps = 0.7;
+    m.speed_sigma_mps = 0.12;
+    m.reaction_delay_s = 1.0;
+    m.reaction_jitter_s = 0.3;
+    m.turn_error_sigma_rad = 10 * kDeg;
+    m.compliance = 0.9;
+    m.motion.veer_sigma = 4.0 * kDeg;
+    m.cane.sweep_half_angle_rad = 0.3;  // an untrained, narrow sweep
+    return m;
+  }
+  throw UsageError(fmt::format("unknown user model '{}' (known: {})", name, fmt::join(user_model_names(), ", ")));
+}
+
+UserModel read_user_model(const Config& c) {
+  UserModel m = user_model_preset(c.get_string("user.model", "typical", user_model_names()));
+  const auto d = [&c](const char* key, double& v, Range r) { v = c.get_double(key, v, r); };
+  const auto deg = [&c](const char* key, double& v, Range r) { v = c.get_double(key, v / kDeg, r) * kDeg; };
+  d("user.speed_mps", m.speed_mps, {0.2, 2.0});
+  d("user.speed_sigma_mps", m.speed_sigma_mps, {0.0, 0.5});
+  d("user.reaction_delay_s", m.reaction_delay_s, {0.0, 5.0});
+  d("user.reaction_jitter_s", m.reaction_jitter_s, {0.0, 2.0});
+  deg("user.turn_error_sigma_deg", m.turn_error_sigma_rad, {0.0, 45.0});
+  d("user.compliance", m.compliance, {0.0, 1.0});
+  d("user.wheel_gain", m.wheel_gain, {0.1, 10.0});
+  deg("user.rumble_turn_rate_deg_s", m.rumble_turn_rate_rad_s, {5.0, 180.0});
+  d("user.rumble_speed_factor", m.rumble_speed_factor, {0.0, 1.0});
+  d("user.cane_stop_s", m.cane_stop_s, {0.0, 5.0});
+  deg("user.cane_turn_deg", m.cane_turn_rad, {10.0, 120.0});
+  d("user.cane_detour_m", m.cane_detour_m, {0.1, 5.0});
+  d("user.motion.step_length_m", m.motion.step_length_m, {0.2, 1.5});
+  deg("user.motion.veer_sigma_deg", m.motion.veer_sigma, {0.0, 20.0});
+  d("user.motion.veer_time_constant_s", m.motion.veer_time_constant_s, {0.5, 100.0});
+  deg("user.motion.max_turn_rate_deg_s", m.motion.max_turn_rate_rad_s, {10.0, 360.0});
+  d("user.body.radius_m", m.body.radius_m, {0.1, 0.5});
+  d("user.body.height_m", m.body.height_m, {1.2, 2.2});
+  m.cane.enabled = c.get_bool("user.cane.enabled", m.cane.enabled);
+  d("user.cane.length_m", m.cane.length_m, {0.5, 1.8});
+  deg("user.cane.sweep_half_angle_deg", m.cane.sweep_half_angle_rad, {0.0, 75.0});
+  d("user.cane.detect_height_m", m.cane.detect_height_m, {0.05, 1.0});
+  validate(m.body);
+  validate(m.cane);
+  validate(m.motion);
+  return m;
+}
+
+SimulatedUser::SimulatedUser(const UserModel& model, bool goal_known, const Vec2& goal_W, std::uint64_t seed)
+    : model_(model), goal_known_(goal_known), goal_W_(goal_W), rng_(seed) {
+  std::normal_distribution<double> n(model_.speed_mps, model_.speed_sigma_mps);
+  speed_ = std::clamp(n(rng_), 0.3, 2.0);
+}
+
+void SimulatedUser::perceive(const Instruction& i) {
+  ++counts_.instructions;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Stop and arrival are always heeded; a direction may be missed or disregarded.
+  const bool must = i.kind == Instruction::Kind::kStop || i.kind == Instruction::Kind::kArrived ||
+                    i.kind == Instruction::Kind::kClear;
+  if (!must && u(rng_) > model_.compliance) {
+    ++counts_.ignored;
+    return;
+  }
+  const double jitter = model_.reaction_jitter_s * (2.0 * u(rng_) - 1.0);
+  Instruction delayed = i;
+  delayed.t_s = i.t_s + std::max(0.0, model_.reaction_delay_s + jitter);
+  // Acted on in time order (a later cue with a shorter jitter waits for the earlier one).
+  if (!pending_.empty()) delayed.t_s = std::max(delayed.t_s, pending_.back().t_s);
+  pending_.push_back(delayed);
+}
+
+void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
+  std::normal_distribution<double> turn_error(0.0, model_.turn_error_sigma_rad);
+  using K = Instruction::Kind;
+  if (mode_ == Mode::kArrived) return;
+  switch (i.kind) {
+    case K::kGo: {
+      started_ = true;
+      const double target = wrap(body.heading() + i.value + turn_error(rng_));
+      if (std::abs(i.value) > 10 * kDeg) ++counts_.corrections;
+      heading_ = target;
+      mode_ = Mode::kWalkHeading;
+      speed_factor_ = 1.0;
+      break;
+    }
+    case K::kKeepGoing:
+      started_ = true;
+      if (mode_ != Mode::kWalkHeading) heading_ = body.heading();
+      mode_ = Mode::kWalkHeading;
+      speed_factor_ = 1.0;
+      break;
+    case K::kSteer:
+      started_ = true;
+      steer_ = i.value;
+      mode_ = Mode::kSteer;
+      speed_factor_ = 1.0;
+      break;
+    case K::kTurnToward:
+      started_ = true;
+      if (mode_ != Mode::kTurnToward || turn_side_ != (i.value >= 0 ? 1.0 : -1.0)) ++counts_.corrections;
+      turn_side_ = i.value >= 0 ? 1.0 : -1.0;
+      mode_ = Mode::kTurnToward;
+      speed_factor_ = model_.rumble_speed_factor;
+      break;
+    case K::kHalt:
+      started_ = true;
+      if (mode_ != Mode::kSearch) {
+        ++counts_.corrections;
+        ++counts_.stops;
+        // Search for an open way: turn on the spot toward the goal's side.
+        const Vec2 d = goal_W_ - body.position();
+        turn_side_ = wrap(std::atan2(d.y(), d.x()) - body.heading()) >= 0 ? 1.0 : -1.0;
+      }
+      mode_ = Mode::kSearch;
+      break;
+    case K::kStop:
+    case K::kWait:
+      if (mode_ != Mode::kStanding) ++counts_.stops;
+      mode_ = Mode::kStanding;
+      break;
+    case K::kArrived:
+      mode_ = Mode::kArrived;
+      arrived_ = true;
+      break;
+    case K::kClear:
+      // A side rumble or a halt ended: walk on the way now faced.
+      if (mode_ == Mode::kTurnToward || mode_ == Mode::kSearch) {
+        heading_ = body.heading();
+        mode_ = Mode::kWalkHeading;
+        speed_factor_ = 1.0;
+      }
+      break;
+  }
+  detour_heading_.reset();  // a fresh instruction supersedes a cane detour
+  // A new direction from the device: the veer built up while walking the old one is gone.
+  if (i.kind == K::kGo || i.kind == K::kSteer || i.kind == K::kTurnToward || i.kind == K::kHalt) new_direction_ = true;
+}
+
+MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const std::optional<CaneTouch>& cane) {
+  while (!pending_.empty() && pending_.front().t_s <= t_s) {
+    act(pending_.front(), body);
+    pending_.pop_front();
+  }
+  MotionCommand c;
+  if (goal_known_ && mode_ == Mode::kStanding && !started_ && !arrived_) {
+    // Walk toward the goal as one who knows where it lies (a stop holds them until the next cue).
+    const Vec2 d = goal_W_ - body.position();
+    heading_ = std::atan2(d.y(), d.x());
+    mode_ = Mode::kWalkHeading;
+    started_ = true;
+  }
+  if (goal_known_ && mode_ == Mode::kWalkHeading && !detour_heading_) {
+    const Vec2 d = goal_W_ - body.position();
+    heading_ = std::atan2(d.y(), d.x());
+  }
+  // The cane: stop, turn away from what it touched, walk a short detour, then go on.
+  const bool moving_on = mode_ != Mode::kStanding && mode_ != Mode::kArrived && mode_ != Mode::kSearch;
+  if (cane && model_.cane.enabled && moving_on && !pause_until_) {
+    ++counts_.cane_avoidances;
+    pause_until_ = t_s + model_.cane_stop_s;
+    avoid_side_ = cane->bearing_rad >= 0 ? -1.0 : 1.0;
+    detour_heading_ = wrap(body.heading() + avoid_side_ * model_.cane_turn_rad);
+    detour_end_m_ = body.distance_walked() + model_.cane_detour_m;
+  } else if (pause_until_ && t_s >= *pause_until_) {
+    if (cane) {
+      // Still blocked after turning away: turn further the same way (a corner) and feel again.
+      detour_heading_ = wrap(*detour_heading_ + avoid_side_ * 0.5 * model_.cane_turn_rad);
+      pause_until_ = t_s + model_.cane_stop_s;
+    } else {
+      pause_until_.reset();
+      detour_end_m_ = body.distance_walked() + model_.cane_detour_m;
+    }
+  }
+  if (detour_heading_ && !pause_until_ && body.distance_walked() >= detour_end_m_) detour_heading_.reset();
+
+  switch (mode_) {
+    case Mode::kStanding:
+    case Mode::kArrived:
+      c.speed_mps = 0;
+      c.heading_rad = body.heading();
+      break;
+    case Mode::kWalkHeading:
+      c.speed_mps = speed_ * speed_factor_;
+      c.heading_rad = heading_;
+      break;
+    case Mode::kSteer:
+      c.speed_mps = speed_;
+      c.follow_heading = false;
+      c.turn_rate_rad_s = model_.wheel_gain * steer_;
+      break;
+    case Mode::kTurnToward:
+      c.speed_mps = speed_ * speed_factor_;
+      c.follow_heading = false;
+      c.turn_rate_rad_s = turn_side_ * model_.rumble_turn_rate_rad_s;
+      break;
+    case Mode::kSearch:
+      c.speed_mps = 0;
+      c.follow_heading = false;
+      c.turn_rate_rad_s = turn_side_ * model_.rumble_turn_rate_rad_s;
+      break;
+  }
+  if (pause_until_) {
+    // Turning away on the spot while paused, then the detour.
+    c.speed_mps = 0;
+    c.follow_heading = true;
+    c.heading_rad = *detour_heading_;
+  } else if (detour_heading_ && c.speed_mps > 0) {
+    c.follow_heading = true;
+    c.heading_rad = *detour_heading_;
+  }
+  c.new_direction = new_direction_;
+  new_direction_ = false;
+  return c;
+}
+
+}  // namespace navaid::simulation
