@@ -56,7 +56,21 @@ void write_simulation_yaml(const fs::path& file, const std::string& scenario, co
   if (!y) throw IoError(file.string(), "cannot write");
   y << "# the closed-loop trial's world (navaid trial)\n"
     << "scenario: " << scenario << "\nsimulation:\n  world_seed: " << o.seed << "\n  people: " << (o.people ? "true" : "false")
-    << "\n  vehicles: " << (o.vehicles ? "true" : "false") << "\n  targets: " << (o.targets ? "true" : "false") << "\n";
+    << "\n  vehicles: " << (o.vehicles ? "true" : "false") << "\n  targets: " << (o.targets ? "true" : "false")
+    << "\n  layout: " << (o.random_layout ? "random" : "default") << "\n";
+}
+
+/// What a goal-known person is told of the way: the path's turns sharper than `min_turn_rad`
+/// (the corridors and doors of the route), not its small weaves round obstacles, then the goal.
+std::vector<simulation::Vec2> route_turns(const std::vector<simulation::Vec2>& path, double min_turn_rad) {
+  std::vector<simulation::Vec2> way;
+  for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+    const simulation::Vec2 a = path[i] - path[i - 1], b = path[i + 1] - path[i];
+    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    if (std::abs(turn) > min_turn_rad) way.push_back(path[i]);
+  }
+  way.push_back(path.back());
+  return way;
 }
 
 }  // namespace
@@ -85,6 +99,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const int render_width = static_cast<int>(config.get_int("trial.render_width", 160, 16, 4096));
   const double contact_rate = config.get_double("trial.contact_rate_hz", 20.0, {1.0, 1000.0});
   const double check_m = config.get_double("trial.guidance_check_m", 0.7, {0.05, 10.0});
+  const double route_turn_rad = config.get_double("trial.route_turn_deg", 60.0, {0.0, 180.0}) * M_PI / 180.0;
+  const double turn_reach_m = config.get_double("trial.turn_reach_m", 0.8, {0.1, 5.0});
   const double camera_rate = with_device ? config.get_double("frontend.rate_hz", sim.camera.rate_hz, {1.0, 200.0})
                                          : sim.camera.rate_hz;
 
@@ -170,7 +186,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   // The long cane: swept by cane users and by the augmented cane's user (it is their cane); the
   // Smart Cane rolls its wheel instead. user.cane.enabled says otherwise.
   if (!config.has("user.cane.enabled")) user_model.cane.enabled = goal_known;
-  simulation::SimulatedUser user(user_model, goal_known, goal, person_seed + 1);
+  simulation::SimulatedUser user(user_model, goal_known, route_turns(scenario.path, route_turn_rad), turn_reach_m,
+                                 person_seed + 1);
   simulation::ContactMonitor contacts(scenario.world, scenario.ground_z_m, user_model.body, user_model.cane);
   std::optional<simulation::OnlineSensors> sensors;
   if (device) sensors.emplace(scenario, sim, nominal, render_camera);
@@ -203,6 +220,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   double walking_s = 0;
   std::optional<double> walked_off;
   std::optional<StateEstimate> last_estimate;
+  std::optional<simulation::CaneTouch> bump;
   const double dt = ns_to_seconds(imu_dt_ns);
   for (Timestamp t = begin;; t += imu_dt_ns) {
     const double t_s = ns_to_seconds(t);
@@ -222,9 +240,16 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         pointing_into_obstacle = blocked.has_value();
       }
     }
-    simulation::MotionCommand command = user.decide(t_s, body, contacts.cane_touch());
+    simulation::MotionCommand command = user.decide(t_s, body, contacts.cane_touch(), bump);
     if (t_s < 0) command.speed_mps = 0;  // the still start
-    if (t > begin) body.step(command, dt);
+    bump.reset();
+    if (t > begin) {
+      const simulation::Vec2 from = body.position();
+      body.step(command, dt);
+      // Walls do not give way: a step into an obstacle ends where it began, and the person feels it.
+      bump = contacts.bump(from, body.position(), body.heading());
+      if (bump) body.halt_at(from);
+    }
     const simulation::KinematicState state = body.state();
     if (body.speed() > 0.05) {
       walking_s += dt;
@@ -330,7 +355,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   j["guidance_into_obstacle"] = into;
   j["user_counts"] = {{"instructions", r.user.instructions}, {"ignored", r.user.ignored},
                       {"corrections", r.user.corrections}, {"stops", r.user.stops},
-                      {"cane_avoidances", r.user.cane_avoidances}, {"preferred_speed_mps", user.preferred_speed()}};
+                      {"cane_avoidances", r.user.cane_avoidances}, {"bumps", r.user.bumps}, {"preferred_speed_mps", user.preferred_speed()}};
   j["time"] = {{"wall_s", r.wall_s}, {"person_and_contacts_s", person_s}, {"sensors_s", sensor_s},
                {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index}};
   if (device) j["device_run"] = device_summary;

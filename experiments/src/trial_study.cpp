@@ -66,6 +66,7 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
   const fs::path preset = spec.device == "none" ? fs::path() : device_preset_file(spec.device);
   std::vector<std::string> overrides = spec.overrides;
   overrides.push_back("user.model=" + spec.user);
+  if (spec.layouts == "random") overrides.push_back("simulation.layout=random");
   const Config base = preset.empty() ? Config::parse("{}", "<no device>", overrides) : Config::load(preset, overrides);
 
   fs::create_directories(out / "trials");

@@ -117,6 +117,28 @@ std::optional<std::uint32_t> ContactMonitor::blocked_along(const Vec2& position,
   return std::nullopt;
 }
 
+std::optional<CaneTouch> ContactMonitor::bump(const Vec2& from, const Vec2& to, double heading_rad) const {
+  const double z_lo = ground_z_ + body_.step_over_m, z_hi = ground_z_ + body_.height_m;
+  std::optional<CaneTouch> hit;
+  for (std::uint32_t i = 0; i < statics_->size(); ++i) {
+    if (box_gap(static_bounds_[i], to) > body_.radius_m) continue;
+    const Shape& shape = statics_->primitive(i).shape;
+    const double d_to = horizontal_distance(shape, to, z_lo, z_hi);
+    // A touch gives 3 cm (clothes, an arm held out) before it stops the body, so the contact
+    // monitor, sampling slower than the steps, sees every bump.
+    constexpr double kGive = 0.03;
+    if (d_to >= body_.radius_m - kGive || d_to >= horizontal_distance(shape, from, z_lo, z_hi)) continue;
+    if (hit && d_to >= hit->distance_m) continue;
+    // Where it is: down the distance's gradient (central differences over 1 cm).
+    constexpr double e = 0.01;
+    const Vec2 g(horizontal_distance(shape, to + Vec2(e, 0), z_lo, z_hi) - horizontal_distance(shape, to - Vec2(e, 0), z_lo, z_hi),
+                 horizontal_distance(shape, to + Vec2(0, e), z_lo, z_hi) - horizontal_distance(shape, to - Vec2(0, e), z_lo, z_hi));
+    const double toward = g.norm() > 0 ? std::atan2(-g.y(), -g.x()) : heading_rad;
+    hit = CaneTouch{std::remainder(toward - heading_rad, 2 * M_PI), d_to, false, i};
+  }
+  return hit;
+}
+
 std::vector<Contact> ContactMonitor::update(double t_s, const Vec2& position, double heading_rad, const World& moving) {
   cane_touch_.reset();
   std::vector<Hit> hits;

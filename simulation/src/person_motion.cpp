@@ -65,11 +65,13 @@ void PersonMotion::step(const MotionCommand& c, double dt) {
   const PersonMotionConfig& k = config_;
   if (c.new_direction) veer_ = 0;
   const double r_target =
-      c.follow_heading ? std::clamp(k.heading_gain_per_s * wrap(c.heading_rad + veer_ - psi_), -k.max_turn_rate_rad_s,
+      c.follow_heading ? std::clamp(k.heading_gain_per_s * wrap(c.heading_rad + (c.speed_mps > 0 ? veer_ : 0.0) - psi_),
+                                    -k.max_turn_rate_rad_s,
                                     k.max_turn_rate_rad_s)
                        : std::clamp(c.turn_rate_rad_s, -k.max_turn_rate_rad_s, k.max_turn_rate_rad_s);
   du_ = lag_rate(u_, c.speed_mps, k.speed_time_constant_s, k.max_acceleration_mps2, dt);
   dr_ = lag_rate(r_, r_target, k.turn_time_constant_s, k.max_yaw_acceleration_rad_s2, dt);
+  // The veer is a drift of the walked line: one standing still holds the heading they turned to.
   // u, r and psi are polynomials over the step; the position integrates (u cos psi, u sin psi) by
   // Simpson's rule on 8 panels (error ~1e-12 m per 5 ms step at walking speeds).
   const auto heading_at = [&](double s) { return psi_ + r_ * s + 0.5 * dr_ * s * s; };
@@ -91,6 +93,12 @@ void PersonMotion::step(const MotionCommand& c, double dt) {
   if (k.veer_sigma > 0 && u_ > 0.05)
     veer_ += -veer_ * dt / k.veer_time_constant_s + k.veer_sigma * std::sqrt(dt) * normal_(rng_);
   t_ += dt;
+}
+
+void PersonMotion::halt_at(const Vec2& position) {
+  p_ = position;
+  u_ = 0;
+  du_ = 0;
 }
 
 KinematicState PersonMotion::state() const {

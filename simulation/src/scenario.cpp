@@ -76,6 +76,7 @@ Scenario make_scenario(std::string_view name, const ScenarioOptions& options) {
   s.description = e.description;
   s.seed = options.seed == 0 ? e.seed : options.seed;
   s.place_targets = options.targets;
+  s.random_layout = options.random_layout;
   Rng rng(s.seed);
   e.build(s, rng);
   // Moving objects are always generated (so the static world does not depend on the switches),

@@ -106,9 +106,28 @@ UserModel read_user_model(const Config& c) {
 }
 
 SimulatedUser::SimulatedUser(const UserModel& model, bool goal_known, const Vec2& goal_W, std::uint64_t seed)
-    : model_(model), goal_known_(goal_known), goal_W_(goal_W), rng_(seed) {
+    : SimulatedUser(model, goal_known, std::vector<Vec2>{goal_W}, 0.8, seed) {}
+
+SimulatedUser::SimulatedUser(const UserModel& model, bool goal_known, std::vector<Vec2> turns_then_goal,
+                             double reach_m, std::uint64_t seed)
+    : model_(model), goal_known_(goal_known), way_(std::move(turns_then_goal)), reach_m_(reach_m), rng_(seed) {
+  if (way_.empty()) throw std::invalid_argument("SimulatedUser: the way needs at least the goal");
+  if (!(reach_m_ > 0)) throw std::invalid_argument("SimulatedUser: the turn points' reach must be positive");
+  goal_W_ = way_.back();
   std::normal_distribution<double> n(model_.speed_mps, model_.speed_sigma_mps);
   speed_ = std::clamp(n(rng_), 0.3, 2.0);
+}
+
+const Vec2& SimulatedUser::aim(const Vec2& p) {
+  while (next_way_ + 1 < way_.size()) {
+    const Vec2& w = way_[next_way_];
+    const Vec2 leg = way_[next_way_ + 1] - w;
+    const bool reached = (p - w).norm() <= reach_m_;
+    const bool past = (p - w).dot(leg) > 0 && (p - w).norm() <= 2 * reach_m_;
+    if (!reached && !past) break;
+    ++next_way_;
+  }
+  return way_[next_way_];
 }
 
 void SimulatedUser::perceive(const Instruction& i) {
@@ -167,8 +186,8 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
       if (mode_ != Mode::kSearch) {
         ++counts_.corrections;
         ++counts_.stops;
-        // Search for an open way: turn on the spot toward the goal's side.
-        const Vec2 d = goal_W_ - body.position();
+        // Search for an open way: turn on the spot toward the side of where they are going.
+        const Vec2 d = aim(body.position()) - body.position();
         turn_side_ = wrap(std::atan2(d.y(), d.x()) - body.heading()) >= 0 ? 1.0 : -1.0;
       }
       mode_ = Mode::kSearch;
@@ -196,7 +215,15 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
   if (i.kind == K::kGo || i.kind == K::kSteer || i.kind == K::kTurnToward || i.kind == K::kHalt) new_direction_ = true;
 }
 
-MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const std::optional<CaneTouch>& cane) {
+namespace {
+// A cane touch further than this off the walking line is something beside the way (a wall being
+// walked along): the person edges away by kShorelineTurn instead of stopping to walk round it.
+constexpr double kShorelineBearing = 0.3;
+constexpr double kShorelineTurn = 0.35;
+}  // namespace
+
+MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const std::optional<CaneTouch>& cane_touch,
+                                    const std::optional<CaneTouch>& bump) {
   while (!pending_.empty() && pending_.front().t_s <= t_s) {
     act(pending_.front(), body);
     pending_.pop_front();
@@ -204,23 +231,32 @@ MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const 
   MotionCommand c;
   if (goal_known_ && mode_ == Mode::kStanding && !started_ && !arrived_) {
     // Walk toward the goal as one who knows where it lies (a stop holds them until the next cue).
-    const Vec2 d = goal_W_ - body.position();
+    const Vec2 d = aim(body.position()) - body.position();
     heading_ = std::atan2(d.y(), d.x());
     mode_ = Mode::kWalkHeading;
     started_ = true;
   }
   if (goal_known_ && mode_ == Mode::kWalkHeading && !detour_heading_) {
-    const Vec2 d = goal_W_ - body.position();
+    const Vec2 d = aim(body.position()) - body.position();
     heading_ = std::atan2(d.y(), d.x());
   }
-  // The cane: stop, turn away from what it touched, walk a short detour, then go on.
+  // The cane, or the body itself walking into something: stop, turn away from it, walk a short
+  // detour, then go on.
+  const std::optional<CaneTouch> cane = bump ? bump : model_.cane.enabled ? cane_touch : std::nullopt;
   const bool moving_on = mode_ != Mode::kStanding && mode_ != Mode::kArrived && mode_ != Mode::kSearch;
-  if (cane && model_.cane.enabled && moving_on && !pause_until_) {
+  if (bump) ++counts_.bumps;
+  if (cane && moving_on && !pause_until_) {
     ++counts_.cane_avoidances;
-    pause_until_ = t_s + model_.cane_stop_s;
     avoid_side_ = cane->bearing_rad >= 0 ? -1.0 : 1.0;
-    detour_heading_ = wrap(body.heading() + avoid_side_ * model_.cane_turn_rad);
-    detour_end_m_ = body.distance_walked() + model_.cane_detour_m;
+    if (std::abs(cane->bearing_rad) > kShorelineBearing && !bump) {
+      // Touched off to the side (a wall along the way, the shoreline): edge away without stopping.
+      detour_heading_ = wrap(body.heading() + avoid_side_ * kShorelineTurn);
+      detour_end_m_ = body.distance_walked() + 0.5 * model_.cane_detour_m;
+    } else {
+      pause_until_ = t_s + model_.cane_stop_s;
+      detour_heading_ = wrap(body.heading() + avoid_side_ * model_.cane_turn_rad);
+      detour_end_m_ = body.distance_walked() + model_.cane_detour_m;
+    }
   } else if (pause_until_ && t_s >= *pause_until_) {
     if (cane) {
       // Still blocked after turning away: turn further the same way (a corner) and feel again.

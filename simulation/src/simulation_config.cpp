@@ -182,6 +182,7 @@ ScenarioOptions read_scenario_options(const Config& c) {
   o.people = c.get_bool("simulation.people", o.people);
   o.vehicles = c.get_bool("simulation.vehicles", o.vehicles);
   o.targets = c.get_bool("simulation.targets", o.targets);
+  o.random_layout = c.get_string("simulation.layout", "default", {"default", "random"}) == "random";
   return o;
 }
 

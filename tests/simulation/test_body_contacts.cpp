@@ -75,6 +75,29 @@ TEST(BodyContacts, MovingPeopleAndTheWayAhead) {
   EXPECT_FALSE(monitor.blocked_along(Vec2(1.0, 0), 0.0, 0.7));
 }
 
+TEST(BodyContacts, AStepIntoAnObstacleIsABumpAStepAwayIsNot) {
+  World w;
+  w.add(Box{SE3(Quat::Identity(), Vec3(0, -1.06, 1.3)), Vec3(10, 0.06, 1.3)}, surface(SemanticClass::kWall));
+  ContactMonitor monitor(w, 0.0, BodyModel{}, CaneModel{});
+  // Walking south-east toward the wall (its face at y = -1): free until the body is within its
+  // radius less the 3 cm give.
+  const double heading = -M_PI / 4;
+  const Vec2 dir(std::cos(heading), std::sin(heading));
+  Vec2 p(2.0, 0.0);
+  std::optional<CaneTouch> bump;
+  for (int k = 0; k < 400 && !bump; ++k) {
+    bump = monitor.bump(p, p + 0.005 * dir, heading);
+    if (!bump) p += 0.005 * dir;
+  }
+  ASSERT_TRUE(bump.has_value());
+  EXPECT_NEAR(p.y(), -1.0 + 0.22 - 0.03, 0.01);
+  EXPECT_NEAR(bump->bearing_rad, -M_PI / 4, 0.02);  // the wall lies to the south: 45 deg right
+  EXPECT_EQ(bump->primitive, 0u);
+  // Stepping back or along the wall is free.
+  EXPECT_FALSE(monitor.bump(p, p - 0.005 * dir, heading).has_value());
+  EXPECT_FALSE(monitor.bump(p, p + Vec2(0.005, 0), 0.0).has_value());
+}
+
 TEST(BodyContacts, BadModelsAreNamed) {
   BodyModel b;
   b.head_bottom_m = 2.0;

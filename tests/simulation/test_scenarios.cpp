@@ -293,3 +293,41 @@ TEST(UrbanCanyon, OpenFieldIsZeroStreetCanyonIsKnown) {
 
 }  // namespace
 }  // namespace navaid::simulation
+
+namespace navaid::simulation {
+namespace {
+
+// The random layout families of the safety study: every seed a different layout, every one
+// walkable with the clearance of the default ones, and the default layout untouched by the switch.
+TEST(Scenarios, RandomLayoutsDifferBySeedAndKeepThePathClear) {
+  for (const char* name : {"corridor", "obstacle-course"}) {
+    SCOPED_TRACE(name);
+    std::set<std::vector<double>> layouts;
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+      ScenarioOptions o;
+      o.seed = seed;
+      o.random_layout = true;
+      const Scenario s = make_scenario(name, o);
+      SCOPED_TRACE(seed);
+      EXPECT_GE(path_clearance(s.world, s.path, s.ground_z_m, 0.1, {}, s.deliberate_obstacles), 0.3);
+      EXPECT_GE(horizontal_clearance(s.world, s.path.front(), s.ground_z_m, {0.2, 1.8}), 0.3);
+      std::vector<double> where;
+      for (std::uint32_t id : s.placed_obstacles) {
+        const AxisAlignedBox b = bounds_of(s.world.primitive(id).shape);
+        where.push_back(b.min.x());
+        where.push_back(b.min.y());
+      }
+      layouts.insert(where);
+    }
+    EXPECT_EQ(layouts.size(), 40u);
+  }
+  ScenarioOptions d;
+  d.seed = 5;
+  ScenarioOptions r = d;
+  r.random_layout = true;
+  EXPECT_NE(make_scenario("corridor", d).path, make_scenario("corridor", r).path);
+  EXPECT_EQ(make_scenario("route1", d).path, make_scenario("route1", r).path);  // no random family
+}
+
+}  // namespace
+}  // namespace navaid::simulation

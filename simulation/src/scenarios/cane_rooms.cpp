@@ -6,7 +6,43 @@ namespace navaid::simulation::scenarios {
 
 namespace {
 using C = SemanticClass;
+
+// The corridor's three kinds of station; `side` +1 puts it against the left wall (y > 0), -1
+// against the right one.
+std::uint32_t low_box(SceneBuilder& b, double x, double side) {  // knee-high, on the floor
+  return b.box(Vec3(x - 0.3, side > 0 ? 0.2 : -1.0, 0.0), Vec3(x + 0.3, side > 0 ? 1.0 : -0.2, 0.3), C::kUnlabeled, 0.05);
 }
+std::uint32_t hanging_board(SceneBuilder& b, double x, double side) {  // head-high sign
+  return b.box(Vec3(x - 0.3, side > 0 ? 0.2 : -1.0, 1.3), Vec3(x + 0.3, side > 0 ? 1.0 : -0.2, 1.9), C::kTrafficSign, 0.05);
+}
+void board_suspension(SceneBuilder& b, double x, double side) {  // the board hangs from the ceiling
+  b.cylinder(Vec2(x, 0.6 * side), 1.9, 0.01, 2.6 - 1.9, C::kPole, 0.05);
+}
+std::uint32_t cabinet(SceneBuilder& b, double x, double side) {  // standing, waist-high
+  return b.box(Vec3(x - 0.25, side > 0 ? 0.05 : -0.55, 0.0), Vec3(x + 0.25, side > 0 ? 0.55 : -0.05, 1.2), C::kUnlabeled,
+               0.05);
+}
+
+// The random corridor family: the three stations in a random order, each against a random wall,
+// 2.3-2.8 m apart; the path passes each on the open side.
+void build_corridor_stations_at_random(Scenario& s, SceneBuilder& b, Rng& rng) {
+  std::uint32_t (*kinds[3])(SceneBuilder&, double, double) = {low_box, hanging_board, cabinet};
+  for (int i = 2; i > 0; --i) std::swap(kinds[i], kinds[static_cast<int>(rng.uniform(0.0, i + 1.0 - 1e-9))]);
+  double x = rng.uniform(2.0, 2.8);
+  s.path = {Vec2(0.0, 0.0)};
+  for (auto* kind : kinds) {
+    const double side = rng.uniform(0.0, 1.0) < 0.5 ? 1.0 : -1.0;
+    s.placed_obstacles.push_back(kind(b, x, side));
+    if (kind == hanging_board) board_suspension(b, x, side);
+    const double pass_y = -0.45 * side;
+    s.path.push_back(Vec2(x - 1.5, 0.0));
+    s.path.push_back(Vec2(x - 0.7, pass_y));
+    s.path.push_back(Vec2(x + 0.7, pass_y));
+    x += rng.uniform(2.3, 2.8);
+  }
+  s.path.push_back(Vec2(10.0, 0.0));
+}
+}  // namespace
 
 // 10 m x 2 m corridor (x in [0, 10], y in [-1, 1]); the path weaves around a low box, a hanging
 // box and a standing cabinet, keeping >= 0.4 m from each.
@@ -22,15 +58,16 @@ void build_corridor(Scenario& s, Rng& rng) {
   b.box(Vec3(0.0, -1.12, 0.0), Vec3(10.0, -1.0, h), C::kWall, 0.08);
   b.box(Vec3(0.0, 1.0, 0.0), Vec3(10.0, 1.12, h), C::kWall, 0.08);
 
+  if (s.random_layout) {
+    build_corridor_stations_at_random(s, b, rng);
+    return;
+  }
   // Obstacle stations, jittered along x by the seed.
   const double x_low = 2.5 + rng.uniform(-0.2, 0.2);
   const double x_hang = 5.5 + rng.uniform(-0.2, 0.2);
   const double x_stand = 8.0 + rng.uniform(-0.2, 0.2);
-  s.placed_obstacles = {
-      b.box(Vec3(x_low - 0.3, 0.2, 0.0), Vec3(x_low + 0.3, 1.0, 0.3), C::kUnlabeled, 0.05),        // low box against the left wall
-      b.box(Vec3(x_hang - 0.3, -1.0, 1.3), Vec3(x_hang + 0.3, -0.2, 1.9), C::kTrafficSign, 0.05),  // hanging sign board
-      b.box(Vec3(x_stand - 0.25, 0.05, 0.0), Vec3(x_stand + 0.25, 0.55, 1.2), C::kUnlabeled, 0.05)};  // standing cabinet
-  b.cylinder(Vec2(x_hang, -0.6), 1.9, 0.01, h - 1.9, C::kPole, 0.05);                           // the board's suspension
+  s.placed_obstacles = {low_box(b, x_low, 1.0), hanging_board(b, x_hang, -1.0), cabinet(b, x_stand, 1.0)};
+  board_suspension(b, x_hang, -1.0);
   s.path = {Vec2(0.0, 0.0),          Vec2(x_low - 1.3, 0.0),   Vec2(x_low - 0.5, -0.4), Vec2(x_low + 0.9, -0.4),
             Vec2(x_hang - 0.9, 0.4), Vec2(x_hang + 0.9, 0.4),  Vec2(x_stand - 0.7, -0.45), Vec2(x_stand + 0.7, -0.45),
             Vec2(10.0, 0.0)};
@@ -60,21 +97,30 @@ void build_obstacle_course(Scenario& s, Rng& rng) {
   b.box(Vec3(0.0, 6.6, 0.0), Vec3(2.4, 6.65, 1.8), C::kWall, 0.1);
 
   // Chairs on the floor beside the walking line, slightly jittered by the seed.
+  // The random family moves them further along the walking line (they stay beside it) and turns
+  // them at random.
+  const double along = s.random_layout ? 1.0 : 0.1;
+  const auto yaw = [&](double fixed) { return s.random_layout ? rng.uniform(-3.14159, 3.14159) : fixed; };
   auto jitter = [&] { return Vec2(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)); };
-  b.chair(Vec2(1.8, 3.0) + jitter(), 0.0, 0.3);
-  b.chair(Vec2(5.4, 0.5) + jitter(), 0.0, 1.6);
-  b.chair(Vec2(9.35, 4.5) + jitter(), 0.0, 3.1);
-  b.chair(Vec2(7.75, 5.6) + Vec2(rng.uniform(-0.1, 0.0), rng.uniform(-0.1, 0.1)), 0.0, -0.4);
-  b.chair(Vec2(5.6, 6.0) + jitter(), 0.0, 2.0);
+  b.chair(Vec2(1.8, 3.0) + jitter() + Vec2(0, s.random_layout ? rng.uniform(-1.0, 0.8) : 0.0), 0.0, yaw(0.3));
+  b.chair(Vec2(5.4, 0.5) + Vec2(rng.uniform(-along, along), rng.uniform(-0.1, 0.1)), 0.0, yaw(1.6));
+  b.chair(Vec2(9.35, 4.5) + Vec2(rng.uniform(-0.1, 0.1), rng.uniform(-along, along)), 0.0, yaw(3.1));
+  b.chair(Vec2(7.75, 5.6) + Vec2(rng.uniform(-0.1, 0.0), rng.uniform(-0.1, 0.1)), 0.0, yaw(-0.4));
+  b.chair(Vec2(5.6, 6.0) + jitter() * (s.random_layout ? 8.0 : 1.0), 0.0, yaw(2.0));
 
   // Hanging obstacles: head-high over the south leg (deliberate), waist-high beside the east leg.
-  const std::uint32_t head = s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(5.6, 1.4, 1.7)), Vec3(0.2, 0.2, 0.2)},
+  // Random family: the head-high one anywhere over the south leg, the waist-high one anywhere
+  // beside the east leg.
+  const double head_x = s.random_layout ? rng.uniform(3.8, 7.2) : 5.6;
+  const double waist_y = s.random_layout ? rng.uniform(3.0, 7.6) : 6.5;
+  const std::uint32_t head = s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(head_x, 1.4, 1.7)), Vec3(0.2, 0.2, 0.2)},
                                          b.surface(C::kUnlabeled, 0.05));
-  const std::uint32_t cord = b.cylinder(Vec2(5.6, 1.4), 1.9, 0.005, h - 1.9, C::kUnlabeled, 0.05);
+  const std::uint32_t cord = b.cylinder(Vec2(head_x, 1.4), 1.9, 0.005, h - 1.9, C::kUnlabeled, 0.05);
   s.deliberate_obstacles = {head, cord};
   s.placed_obstacles = {
-      s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(9.15, 6.5, 1.0)), Vec3(0.3, 0.3, 0.25)}, b.surface(C::kUnlabeled, 0.05)),
-      b.cylinder(Vec2(9.15, 6.5), 1.25, 0.005, h - 1.25, C::kUnlabeled, 0.05)};
+      s.world.add(Ellipsoid{SE3(Quat::Identity(), Vec3(9.15, waist_y, 1.0)), Vec3(0.3, 0.3, 0.25)},
+                  b.surface(C::kUnlabeled, 0.05)),
+      b.cylinder(Vec2(9.15, waist_y), 1.25, 0.005, h - 1.25, C::kUnlabeled, 0.05)};
 
   // The music source marking the goal: a speaker on a small table in the corner.
   b.table(Vec2(9.5, 9.5), Vec2(0.3, 0.3), 0.0, 0.0);

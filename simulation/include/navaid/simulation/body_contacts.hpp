@@ -76,6 +76,12 @@ class ContactMonitor {
   /// clear. For guidance that points into an obstacle.
   std::optional<std::uint32_t> blocked_along(const Vec2& position, double heading_rad, double distance_m) const;
 
+  /// Whether a step of the body from `from` to `to` runs into a static primitive: the body touches
+  /// one at `to` and is nearer to it than at `from` (one who stands against a wall may step away).
+  /// Returns the obstacle as felt: its bearing relative to `heading_rad` and its distance. People
+  /// and vehicles do not stop the body (they are counted as contacts and move on).
+  std::optional<CaneTouch> bump(const Vec2& from, const Vec2& to, double heading_rad) const;
+
   /// The cane's touch found by the last update, if any.
   const std::optional<CaneTouch>& cane_touch() const { return cane_touch_; }
 

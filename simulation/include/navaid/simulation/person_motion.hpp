@@ -62,6 +62,8 @@ class PersonMotion {
   /// Advances by dt > 0 [s] under `command` (held over the step). Throws std::invalid_argument for
   /// dt <= 0.
   void step(const MotionCommand& command, double dt);
+  /// The body ran into something: back at `position` (where the step began), standing.
+  void halt_at(const Vec2& position);
 
   /// Body state now (exact derivatives of the motion over the last step, gait and scan included).
   KinematicState state() const;

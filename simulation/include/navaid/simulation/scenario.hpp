@@ -81,6 +81,8 @@ struct Scenario {
   std::vector<TargetObject> targets;
   /// Read by the builders: whether to place the target objects (ScenarioOptions::targets).
   bool place_targets = true;
+  /// Read by the builders: ScenarioOptions::random_layout.
+  bool random_layout = false;
 };
 
 struct ScenarioOptions {
@@ -90,6 +92,9 @@ struct ScenarioOptions {
   /// Target objects for hand guidance (the lab walks' tagged box). Off gives the world as it was
   /// before the box (studies that must keep their data, e.g. the estimator tests' lab walks).
   bool targets = true;
+  /// Randomize the obstacle layout by the seed (simulation.layout=random) where a scenario has
+  /// a random family (corridor, obstacle-course); elsewhere the seed's usual jitter.
+  bool random_layout = false;
 };
 
 /// All scenario names, in documentation order.

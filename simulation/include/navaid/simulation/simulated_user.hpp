@@ -70,7 +70,8 @@ struct UserCounts {
   std::size_t ignored = 0;       ///< not followed (compliance)
   std::size_t corrections = 0;   ///< direction changes acted on (go > 10 deg, side rumbles, halts)
   std::size_t stops = 0;
-  std::size_t cane_avoidances = 0;
+  std::size_t cane_avoidances = 0;  ///< detours started from a touch of the cane or of the body
+  std::size_t bumps = 0;            ///< steps stopped by an obstacle the body ran into
 };
 
 class SimulatedUser {
@@ -80,25 +81,40 @@ class SimulatedUser {
   /// start, as a traveller who knows where it lies or hears it (the BYU study's music source), and
   /// the device's cues turn or stop them only while they last (cane only, the augmented cane).
   SimulatedUser(const UserModel& model, bool goal_known, const Vec2& goal_W, std::uint64_t seed);
+  /// As above, with the route's turns known (an orientation-and-mobility briefing: "right after
+  /// the chairs, then left"): a goal-known person walks to each turn point in order, then to the
+  /// goal. A turn point counts as passed within `reach_m`, or once the person is past it along
+  /// the next leg and within 2 reach_m.
+  SimulatedUser(const UserModel& model, bool goal_known, std::vector<Vec2> turns_then_goal, double reach_m,
+                std::uint64_t seed);
 
   /// An instruction the device gave at i.t_s; acted on after the reaction delay.
   void perceive(const Instruction& i);
 
   /// What the person does over the next step at time t, from where they are and what the cane
   /// feels (may be empty).
-  MotionCommand decide(double t_s, const PersonMotion& body, const std::optional<CaneTouch>& cane);
+  /// `bump`: the body ran into something on the last step (ContactMonitor::bump); handled as a
+  /// cane touch, with or without a cane.
+  MotionCommand decide(double t_s, const PersonMotion& body, const std::optional<CaneTouch>& cane,
+                       const std::optional<CaneTouch>& bump = std::nullopt);
 
   bool arrived() const { return arrived_; }
+  std::size_t turns_passed() const { return next_way_; }
   double preferred_speed() const { return speed_; }
   const UserCounts& counts() const { return counts_; }
   const UserModel& model() const { return model_; }
 
  private:
   void act(const Instruction& i, const PersonMotion& body);
+  /// Where a goal-known person heads now: the next turn point not yet passed, or the goal.
+  const Vec2& aim(const Vec2& position);
 
   UserModel model_;
   bool goal_known_;
   Vec2 goal_W_;
+  std::vector<Vec2> way_;        ///< turn points then the goal
+  std::size_t next_way_ = 0;
+  double reach_m_ = 0.8;
   std::mt19937_64 rng_;
   double speed_ = 0;
   std::deque<Instruction> pending_;  ///< perceived, to be acted on at their t_s (delay added)
