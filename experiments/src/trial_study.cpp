@@ -29,9 +29,12 @@ std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
+/// Student-t interval of the mean; every measure of a trial is >= 0, so the interval is cut at 0
+/// (a few trials with rare contacts would otherwise report negative counts).
 nlohmann::ordered_json interval_json(const std::vector<double>& v) {
   if (v.empty()) return nullptr;
-  const MeanInterval m = mean_interval(v);
+  MeanInterval m = mean_interval(v);
+  if (std::isfinite(m.low)) m.low = std::max(0.0, m.low);
   const auto finite_or_null = [](double x) -> nlohmann::ordered_json { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; };
   return {{"mean", m.mean}, {"std", m.std}, {"ci95", {finite_or_null(m.low), finite_or_null(m.high)}}, {"n", m.n}};
 }

@@ -61,23 +61,26 @@ ContactMonitor::ContactMonitor(const World& statics, double ground_z_m, const Bo
 void ContactMonitor::check_world(const World& world, bool moving, const Vec2& position, double heading_rad,
                                  std::vector<Hit>& hits) {
   const double g = ground_z_;
-  // Highest part first: a hit that touches several parts at once is named by the highest.
+  // A hit that touches several parts at once is named by the part it covers most (a wall or a
+  // cabinet meets the legs first, a board hung at 1.3-1.9 m the head).
   const std::array<std::pair<BodyPart, std::pair<double, double>>, 3> parts = {{
-      {BodyPart::kHead, {body_.head_bottom_m, body_.height_m}},
-      {BodyPart::kTorso, {body_.legs_top_m, body_.head_bottom_m}},
       {BodyPart::kLegs, {body_.step_over_m, body_.legs_top_m}},
+      {BodyPart::kTorso, {body_.legs_top_m, body_.head_bottom_m}},
+      {BodyPart::kHead, {body_.head_bottom_m, body_.height_m}},
   }};
   const double reach = std::max(body_.radius_m, cane_.enabled ? cane_.length_m + cane_.tip_radius_m : 0.0);
   for (std::uint32_t i = 0; i < world.size(); ++i) {
     const Shape& shape = world.primitive(i).shape;
     const AxisAlignedBox bounds = moving ? bounds_of(shape) : static_bounds_[i];
     if (box_gap(bounds, position) > reach) continue;
+    std::optional<BodyPart> named;
+    double most = 0;
     for (const auto& [part, band] : parts) {
-      if (horizontal_distance(shape, position, g + band.first, g + band.second) < body_.radius_m) {
-        hits.push_back({part, moving, i});
-        break;
-      }
+      if (horizontal_distance(shape, position, g + band.first, g + band.second) >= body_.radius_m) continue;
+      const double overlap = std::min(band.second, bounds.max.z() - g) - std::max(band.first, bounds.min.z() - g);
+      if (!named || overlap > most) named = part, most = overlap;
     }
+    if (named) hits.push_back({*named, moving, i});
     if (!cane_.enabled) continue;
     // The swept sector: the tip's arc and two inner arcs the shaft passes over near the ground.
     constexpr int kAngles = 9;
