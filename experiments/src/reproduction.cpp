@@ -5,6 +5,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/planner_table.hpp"
 #include "navaid/experiments/reproduction_table_runner.hpp"
+#include "navaid/experiments/trial_reproduction.hpp"
 
 namespace navaid::experiments {
 
@@ -99,6 +100,15 @@ std::vector<Reproduction> make_registry() {
       [](const std::filesystem::path& matrix, const ReproductionRequest& request, const ReproductionEnvironment& env) {
         run_planner_table(smart_cane_table1_entry(), matrix, request, env);
       }));
+  list.push_back(entry(
+      "augmented-cane-table3.3",
+      "BYU augmented cane Table 3.3: FICF vs CACF on the obstacle course, simulated users in closed loop",
+      "augmented-cane-point-cloud-obstacle-avoidance.txt, §3.2, Tables 3.1-3.3",
+      "table3.3.md, table3.3.csv (time, cane and body contacts: the paper's mean and SD beside ours, Welch's t "
+      "test), verdict.md, ficf/ and cacf/ (the trial studies: trials.csv, summary.md)",
+      "augmented-cane-table3.3.yaml: obstacle-course, augmented-cane, sighted-blindfolded users, 11 seeds per cost "
+      "function through navaid trial; --quick: 3 seeds; --seeds N: N",
+      "augmented-cane-table3.3.yaml", run_augmented_cane_table3_3));
   return list;
 }
 

@@ -182,4 +182,20 @@ RelativeChange relative_change_bootstrap(const std::vector<double>& method, cons
   return r;
 }
 
+WelchTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() < 2 || b.size() < 2) throw Error("Welch's t test needs at least two values in each sample");
+  const MeanInterval ma = mean_interval(a), mb = mean_interval(b);
+  const double va = ma.std * ma.std / a.size(), vb = mb.std * mb.std / b.size();
+  WelchTest w;
+  if (va + vb == 0) {
+    w.p = ma.mean == mb.mean ? 1.0 : 0.0;
+    w.t = ma.mean == mb.mean ? 0.0 : std::copysign(INFINITY, ma.mean - mb.mean);
+    return w;
+  }
+  w.t = (ma.mean - mb.mean) / std::sqrt(va + vb);
+  w.dof = (va + vb) * (va + vb) / (va * va / (a.size() - 1.0) + vb * vb / (b.size() - 1.0));
+  w.p = 2.0 * (1.0 - student_t_cdf(std::abs(w.t), w.dof));
+  return w;
+}
+
 }  // namespace navaid::experiments

@@ -9,6 +9,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/closed_loop_trial.hpp"
 #include "navaid/experiments/device_preset.hpp"
+#include "navaid/experiments/trial_reproduction.hpp"
 #include "navaid/experiments/trial_study.hpp"
 #include "test_support.hpp"
 
@@ -126,6 +127,24 @@ TEST(TrialStudy, TwoJobsGiveTheTrialsOneJobGivesWithIntervalsAndReplayCommands) 
   EXPECT_TRUE(fs::exists(dir / "one" / "summary.md"));
   s.last_seed = 0;
   EXPECT_THROW(run_trial_study(s, dir / "bad"), UsageError);
+}
+
+TEST(TrialReproduction, AugmentedCaneTable3_3PutsThePaperBesideOursWithAVerdict) {
+  ScratchDir dir("trial_repro");
+  ReproductionRequest request;
+  request.out = dir / "out";
+  request.seeds = 2;
+  request.jobs = 2;
+  const fs::path matrix = fs::path(NAVAID_SOURCE_DIR) / "experiments" / "reproductions" / "augmented-cane-table3.3.yaml";
+  run_augmented_cane_table3_3(matrix, request, ReproductionEnvironment{});
+  const std::string table = read_text(dir / "out" / "table3.3.md");
+  EXPECT_NE(table.find("simulated users, not human results"), std::string::npos);
+  EXPECT_NE(table.find("133.67 ± 33.67"), std::string::npos);  // the paper's FICF completion time
+  const std::string verdict = read_text(dir / "out" / "verdict.md");
+  EXPECT_TRUE(verdict.find("**Agrees**") != std::string::npos || verdict.find("**Differs**") != std::string::npos);
+  EXPECT_EQ(read_text(dir / "out" / "table3.3.csv").find("measure,paper_ficf_mean"), 0u);
+  request.seeds = 1;
+  EXPECT_THROW(run_augmented_cane_table3_3(matrix, request, ReproductionEnvironment{}), UsageError);
 }
 
 }  // namespace

@@ -147,3 +147,21 @@ TEST(ReproductionStatistics, WilsonIntervalsOfProportions) {
   EXPECT_THROW(wilson_interval(1, 0), Error);
   EXPECT_THROW(wilson_interval(11, 10), Error);
 }
+
+namespace {
+
+// Welch's test against values computed by hand: a = {1, 2, 3, 4} (mean 2.5, var 5/3), b = {2, 4,
+// 6, 8, 10} (mean 6, var 10): t = -3.5 / sqrt(5/12 + 2) = -2.2514, dof = (29/12)^2 /
+// ((5/12)^2 / 3 + 2^2 / 4) = 5.5208; two-sided p (the t density integrated numerically) = 0.0691.
+TEST(WelchTest, KnownAnswerAndDegenerateSamples) {
+  using navaid::experiments::welch_t_test;
+  const auto w = welch_t_test({1, 2, 3, 4}, {2, 4, 6, 8, 10});
+  EXPECT_NEAR(w.t, -2.2514, 1e-4);
+  EXPECT_NEAR(w.dof, 5.5208, 1e-4);
+  EXPECT_NEAR(w.p, 0.0691, 5e-4);
+  EXPECT_EQ(welch_t_test({1, 1}, {1, 1, 1}).p, 1.0);
+  EXPECT_EQ(welch_t_test({1, 1}, {2, 2}).p, 0.0);
+  EXPECT_THROW(welch_t_test({1}, {1, 2}), navaid::Error);
+}
+
+}  // namespace

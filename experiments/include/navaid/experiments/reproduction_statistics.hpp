@@ -60,4 +60,13 @@ RelativeChange relative_change_bootstrap(const std::vector<double>& method, cons
                                          double level = 0.95, std::size_t resamples = 10000,
                                          std::uint64_t seed = 1);
 
+/// Welch's two-sample t test of equal means (unequal variances): the statistic, the
+/// Welch-Satterthwaite degrees of freedom and the two-sided p-value. p = 1 when both samples are
+/// constant and equal, 0 when constant and different. Throws navaid::Error when a sample has fewer
+/// than two values or a non-finite value.
+struct WelchTest {
+  double t = 0, dof = 0, p = 1;
+};
+WelchTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b);
+
 }  // namespace navaid::experiments
