@@ -37,18 +37,18 @@ TEST(TrialCli, AStudyWritesItsTablesAndItsReplayCommandsReplay) {
 TEST(TrialCli, BadOptionsAreNamed) {
   ScratchDir dir("trial_cli_bad");
   const std::string out = " --out '" + dir.path().string() + "'";
-  const auto seeds = navaid_cli("trial --scenario corridor --seeds 3..1" + out);
-  EXPECT_NE(seeds.status, 0);
-  EXPECT_NE(seeds.output.find("--seeds"), std::string::npos) << seeds.output;
-  const auto device = navaid_cli("trial --scenario corridor --device white-cane --seeds 1..1" + out);
-  EXPECT_NE(device.status, 0);
-  EXPECT_NE(device.output.find("smart-cane"), std::string::npos) << device.output;
-  const auto key = navaid_cli("trial --scenario corridor --seeds 1..1 --set user.speed=fast" + out);
-  EXPECT_NE(key.status, 0);
-  EXPECT_NE(key.output.find("user.speed"), std::string::npos) << key.output;
-  const auto scenario = navaid_cli("trial --seeds 1..1" + out);
-  EXPECT_NE(scenario.status, 0);
-  EXPECT_NE(scenario.output.find("--scenario"), std::string::npos) << scenario.output;
+  // (arguments, what the error must name)
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--scenario corridor --seeds 3..1", "--seeds"},
+      {"--scenario corridor --device white-cane --seeds 1..1", "smart-cane"},  // the presets are listed
+      {"--scenario corridor --seeds 1..1 --set user.speed=fast", "user.speed"},
+      {"--seeds 1..1", "--scenario"},
+  };
+  for (const auto& [args, named] : cases) {
+    const auto r = navaid_cli("trial " + args + out);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.output.find(named), std::string::npos) << args << "\n" << r.output;
+  }
 }
 
 }  // namespace
