@@ -101,6 +101,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const double check_m = config.get_double("trial.guidance_check_m", 0.7, {0.05, 10.0});
   const double route_turn_rad = config.get_double("trial.route_turn_deg", 60.0, {0.0, 180.0}) * M_PI / 180.0;
   const double turn_reach_m = config.get_double("trial.turn_reach_m", 0.8, {0.1, 5.0});
+  const double face_tolerance = config.get_double("trial.face_tolerance_deg", 45.0, {1.0, 180.0}) * M_PI / 180.0;
   const double camera_rate = with_device ? config.get_double("frontend.rate_hz", sim.camera.rate_hz, {1.0, 200.0})
                                          : sim.camera.rate_hz;
 
@@ -122,15 +123,18 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       config.apply_override(fmt::format("device.goal_start_frame_m=[{:.6f},{:.6f}]", rel.x(), rel.y()));
     }
     device = read_device_spec(config);
-    if (device->guidance == GuidanceKind::kRoute || device->guidance == GuidanceKind::kHandTarget)
-      throw Error(fmt::format("device {}: its {} guidance does not run in closed loop yet (GPS and magnetometer "
-                              "streams and the hand's reach are not simulated online); trials support walking-path "
-                              "and obstacle-rumble devices",
+    if (device->guidance == GuidanceKind::kHandTarget)
+      throw Error(fmt::format("device {}: its {} guidance does not run in closed loop yet (the hand's reach toward "
+                              "the object is not simulated); trials support route, walking-path and obstacle-rumble "
+                              "devices",
                               device->name, to_string(device->guidance)));
   }
   // Cane users find their own way to the goal; so does the augmented cane's user, toward the
   // music source (the cane only warns); a device with a path or route leads.
   const bool goal_known = !device || device->guidance == GuidanceKind::kObstacleRumble;
+  const bool needs_facing = device && device->guidance == GuidanceKind::kRoute;
+  const simulation::Vec2 last_leg = goal - scenario.path[scenario.path.size() - 2];
+  const double final_heading = std::atan2(last_leg.y(), last_leg.x());
 
   // What the camera renders for mapping: the same lens at a lower resolution (trial.render_width).
   CameraCalibration render_camera = sim.camera;
@@ -151,6 +155,9 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   recording.origin = scenario.origin;
   recording.calibration.cameras = {sim.camera};
   recording.calibration.imu = sim.imu;
+  recording.calibration.gps_lever_arm_B = sim.mount.gps_lever_arm_B;
+  if (sim.gps_enabled) recording.calibration.gps_rate_hz = sim.gps.rate_hz;
+  if (sim.mag_enabled) recording.calibration.mag_rate_hz = sim.mag_rate_hz;
   std::deque<simulation::Instruction> felt;
   double trial_clock_s = 0;
   if (device) {
@@ -188,6 +195,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   if (!config.has("user.cane.enabled")) user_model.cane.enabled = goal_known;
   simulation::SimulatedUser user(user_model, goal_known, route_turns(scenario.path, route_turn_rad), turn_reach_m,
                                  person_seed + 1);
+  if (device && device->guidance == GuidanceKind::kRoute)
+    user.walk_off(start_heading, config.get_double("trial.walk_off_speed_factor", 0.7, {0.1, 1.0}));
   simulation::ContactMonitor contacts(scenario.world, scenario.ground_z_m, user_model.body, user_model.cane);
   std::optional<simulation::OnlineSensors> sensors;
   if (device) sensors.emplace(scenario, sim, nominal, render_camera);
@@ -214,7 +223,9 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const Timestamp camera_dt_ns = seconds_to_ns(1.0 / camera_rate);
   const Timestamp contact_dt_ns = seconds_to_ns(1.0 / contact_rate);
   const Timestamp begin = -seconds_to_ns(sim.still_time_s);
-  Timestamp next_camera = begin, next_contact = begin, next_track = begin;
+  Timestamp next_camera = begin, next_contact = begin, next_track = begin, next_gps = begin, next_mag = begin;
+  const bool uses_gps = device && device->guidance == GuidanceKind::kRoute;
+  std::size_t gps_fixes = 0, mag_samples = 0;
   std::uint64_t frame_index = 0;
   double sensor_s = 0, estimator_s = 0, device_s = 0, person_s = 0;
   double walking_s = 0;
@@ -293,6 +304,24 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       }
       sensor_s += seconds_since(tp);
       tp = Clock::now();
+      // GNSS and the magnetometer at their rates, for the devices that read them (a route); before
+      // the frame of the same moment, which the estimator attaches the fix to.
+      if (uses_gps && t >= next_gps) {
+        next_gps += seconds_to_ns(1.0 / sim.gps.rate_hz);
+        if (auto fix = sensors->gps(state.T_W_B, t)) {
+          ++gps_fixes;
+          auto more = estimator->process(SensorEvent{*fix});
+          estimates.insert(estimates.end(), more.begin(), more.end());
+        }
+      }
+      if (uses_gps && t >= next_mag) {
+        next_mag += seconds_to_ns(1.0 / sim.mag_rate_hz);
+        if (auto m = sensors->mag(state.T_W_B, t)) {
+          ++mag_samples;
+          auto more = estimator->process(SensorEvent{*m});
+          estimates.insert(estimates.end(), more.begin(), more.end());
+        }
+      }
       if (camera_tick) {
         auto more = estimator->process(features);
         estimates.insert(estimates.end(), more.begin(), more.end());
@@ -307,7 +336,9 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
 
     const double to_goal = (body.position() - goal).norm();
     if (to_goal <= goal_radius || user.arrived()) {
-      r.success = to_goal <= goal_radius;
+      // eLabrador's users must also face the landmark at the end: the way the route arrives.
+      r.success = to_goal <= goal_radius &&
+                  (!needs_facing || std::abs(std::remainder(body.heading() - final_heading, 2 * M_PI)) <= face_tolerance);
       r.outcome = r.success ? "arrived" : "stopped-short";
       break;
     }
@@ -357,7 +388,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
                       {"corrections", r.user.corrections}, {"stops", r.user.stops},
                       {"cane_avoidances", r.user.cane_avoidances}, {"bumps", r.user.bumps}, {"preferred_speed_mps", user.preferred_speed()}};
   j["time"] = {{"wall_s", r.wall_s}, {"person_and_contacts_s", person_s}, {"sensors_s", sensor_s},
-               {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index}};
+               {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index},
+               {"gps_fixes", gps_fixes}, {"mag_samples", mag_samples}};
   if (device) j["device_run"] = device_summary;
   r.summary = j;
   std::ofstream(out / "summary.json") << j.dump(2) << "\n";

@@ -6,6 +6,15 @@
 
 namespace navaid::simulation {
 
+namespace {
+// A model's configuration with its own stream of the noise seed, as `navaid simulate` seeds it.
+template <class ModelConfig>
+ModelConfig seeded(ModelConfig c, std::uint64_t seed) {
+  c.seed = seed;
+  return c;
+}
+}  // namespace
+
 OnlineSensors::OnlineSensors(const Scenario& scenario, const SimulationConfig& config, const WalkerTrajectory& nominal,
                              const std::optional<CameraCalibration>& render_camera)
     : scenario_(&scenario),
@@ -20,6 +29,8 @@ OnlineSensors::OnlineSensors(const Scenario& scenario, const SimulationConfig& c
       feature_rng_(model_seed(config.seed, ModelStream::kFeatures)),
       imu_(config.imu, imu_options(config)),
       confusion_(config.label_confusion),
+      gnss_(seeded(config.gps, model_seed(config.seed, ModelStream::kGps)), scenario.origin),
+      magnetometer_(seeded(config.mag, model_seed(config.seed, ModelStream::kMag))),
       depth_unit_m_(cache_depth_unit_m(config.render.max_depth)) {
   config_.rgbd_noise.focal_px = render_calibration_.fx;  // disparity noise in the rendered image's pixels
 }
@@ -32,6 +43,17 @@ FeatureFrame OnlineSensors::features(const SE3& T_W_B, Timestamp t) {
   const SE3 T_W_C = T_W_B * config_.camera.T_B_C;
   const auto moving = moving_caster(*scenario_, ns_to_seconds(t), T_W_C.t);
   return observer_.observe(camera_stamp(config_, t), T_W_C, feature_rng_, moving ? &*moving : nullptr);
+}
+
+std::optional<GpsFix> OnlineSensors::gps(const SE3& T_W_B, Timestamp t) {
+  if (!config_.gps_enabled) return std::nullopt;
+  const Vec3 antenna = T_W_B * config_.mount.gps_lever_arm_B;
+  return gnss_.measure(kSimulationEpoch + t, antenna, SE3::identity(), urban_canyon_factor(world_, antenna));
+}
+
+std::optional<MagSample> OnlineSensors::mag(const SE3& T_W_B, Timestamp t) {
+  if (!config_.mag_enabled) return std::nullopt;
+  return magnetometer_.measure(kSimulationEpoch + t, SE3::identity(), T_W_B);
 }
 
 RgbdFrame OnlineSensors::rgbd(const SE3& T_W_B, Timestamp t, std::uint64_t index) {

@@ -192,8 +192,11 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
       }
       mode_ = Mode::kSearch;
       break;
-    case K::kStop:
     case K::kWait:
+      if (walk_off_ && !started_) break;  // walking off to be located, as told at the start
+      [[fallthrough]];
+    case K::kStop:
+      if (!started_) stopped_before_start_ = true;
       if (mode_ != Mode::kStanding) ++counts_.stops;
       mode_ = Mode::kStanding;
       break;
@@ -229,6 +232,11 @@ MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const 
     pending_.pop_front();
   }
   MotionCommand c;
+  if (walk_off_ && !goal_known_ && mode_ == Mode::kStanding && !started_ && !arrived_ && !stopped_before_start_) {
+    mode_ = Mode::kWalkHeading;
+    heading_ = walk_off_->first;
+    speed_factor_ = walk_off_->second;
+  }
   if (goal_known_ && mode_ == Mode::kStanding && !started_ && !arrived_) {
     // Walk toward the goal as one who knows where it lies (a stop holds them until the next cue).
     const Vec2 d = aim(body.position()) - body.position();

@@ -51,6 +51,30 @@ TEST(SimulatedUser, AGuidedUserWaitsForTheFirstDirectionAndTurnsAfterTheDelay) {
   (void)told;
 }
 
+TEST(SimulatedUser, AUserToldToWalkOffWalksUntilTheFirstDirectionAndOnlyAStopHoldsThem) {
+  const UserModel m = exact_user();
+  SimulatedUser user(m, false, Vec2(100, 0), 3);
+  user.walk_off(0.5, 0.7);
+  PersonMotion body(m.motion, Vec2::Zero(), 0.5, 3);
+  double t = run(user, body, 0.0, 3.0);
+  EXPECT_NEAR(body.speed(), 0.7 * m.speed_mps, 1e-6);
+  EXPECT_NEAR(body.heading(), 0.5, 1e-3);
+  user.perceive({t, K::kWait, 0});  // "Locating, please wait.": walking off is what locates them
+  t = run(user, body, t, 2.0);
+  EXPECT_NEAR(body.speed(), 0.7 * m.speed_mps, 1e-6);
+  user.perceive({t, K::kGo, -0.5});  // the first direction: full speed that way
+  t = run(user, body, t, 3.0);
+  EXPECT_NEAR(body.heading(), 0.0, 0.01);
+  EXPECT_NEAR(body.speed(), m.speed_mps, 1e-6);
+  SimulatedUser held(m, false, Vec2(100, 0), 4);
+  held.walk_off(0.0, 0.7);
+  PersonMotion still(m.motion, Vec2::Zero(), 0.0, 4);
+  held.perceive({0.0, K::kStop, 0});
+  run(held, still, 0.0, 3.0);
+  EXPECT_LT(still.distance_walked(), 0.6);  // stopped after the reaction delay and the slowing down
+  EXPECT_EQ(still.speed(), 0.0);
+}
+
 TEST(SimulatedUser, ACaneUserWalksTowardTheGoalAndStepsRoundWhatTheCaneTouches) {
   UserModel m = exact_user();
   m.cane.enabled = true;

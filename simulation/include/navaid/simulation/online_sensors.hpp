@@ -15,6 +15,8 @@
 #include "navaid/core/camera.hpp"
 #include "navaid/core/messages.hpp"
 #include "navaid/simulation/feature_simulator.hpp"
+#include "navaid/simulation/gnss_model.hpp"
+#include "navaid/simulation/magnetometer_model.hpp"
 #include "navaid/simulation/imu_model.hpp"
 #include "navaid/simulation/label_confusion_model.hpp"
 #include "navaid/simulation/ray_caster.hpp"
@@ -43,6 +45,12 @@ class OnlineSensors {
   /// rendered from T_W_B at trajectory time t, with the frame's number `index`.
   RgbdFrame rgbd(const SE3& T_W_B, Timestamp t, std::uint64_t index);
 
+  /// The GNSS fix of the antenna on the body at T_W_B (multipath from the urban canyon there),
+  /// none in an outage or when config.gps_enabled is off; calls in non-decreasing t.
+  std::optional<GpsFix> gps(const SE3& T_W_B, Timestamp t);
+  /// The magnetometer's sample at T_W_B; none when config.mag_enabled is off.
+  std::optional<MagSample> mag(const SE3& T_W_B, Timestamp t);
+
   const std::vector<Landmark>& landmarks() const { return landmarks_; }
   const ImuModel& imu_model() const { return imu_; }
   const SimulationConfig& config() const { return config_; }
@@ -61,6 +69,8 @@ class OnlineSensors {
   std::mt19937_64 feature_rng_;
   ImuModel imu_;
   LabelConfusionModel confusion_;
+  GnssModel gnss_;
+  MagnetometerModel magnetometer_;
   double depth_unit_m_;
   RenderedFrame clean_;
 };

@@ -88,6 +88,12 @@ class SimulatedUser {
   SimulatedUser(const UserModel& model, bool goal_known, std::vector<Vec2> turns_then_goal, double reach_m,
                 std::uint64_t seed);
 
+  /// A guided person who walks off along `heading_rad` at `speed_factor` of their speed until the
+  /// device's first direction, instead of standing (a "locating" message does not hold them; a stop
+  /// does): eLabrador's users, placed at the start facing the route, walk the first street so that
+  /// GPS and the walked track can be registered.
+  void walk_off(double heading_rad, double speed_factor) { walk_off_ = std::make_pair(heading_rad, speed_factor); }
+
   /// An instruction the device gave at i.t_s; acted on after the reaction delay.
   void perceive(const Instruction& i);
 
@@ -124,6 +130,8 @@ class SimulatedUser {
   double heading_ = 0, steer_ = 0, turn_side_ = 0;
   double speed_factor_ = 1.0;
   bool started_ = false, arrived_ = false;
+  std::optional<std::pair<double, double>> walk_off_;  ///< heading, speed factor
+  bool stopped_before_start_ = false;
   // Avoiding what the cane touched: paused until, then walking the detour heading until the
   // distance walked passes detour_end.
   std::optional<double> pause_until_;
