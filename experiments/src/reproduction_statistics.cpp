@@ -127,7 +127,8 @@ ProportionInterval wilson_interval(std::size_t k, std::size_t n, double level) {
   const double nn = static_cast<double>(n), p = static_cast<double>(k) / nn, z2 = z * z;
   const double centre = (p + z2 / (2 * nn)) / (1 + z2 / nn);
   const double half = z * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn)) / (1 + z2 / nn);
-  return {n, k, p, std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // Exactly 0 and 1 at the ends (the formula leaves rounding residue there).
+  return {n, k, p, k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
 }
 
 RelativeChange relative_change_paired_t(const std::vector<double>& method, const std::vector<double>& baseline,

@@ -57,7 +57,7 @@ std::string replay_command(const TrialStudySpec& spec, std::uint64_t seed, const
   return cmd + " --keep all --out " + shell_quote(out.string());
 }
 
-nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::path& out) {
+nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::path& out, std::vector<TrialResult>* trials) {
   if (spec.scenario.empty()) throw UsageError("--scenario is required");
   if (out.empty()) throw UsageError("--out is required");
   if (spec.last_seed < spec.first_seed) throw UsageError("--seeds A..B needs A <= B");
@@ -193,6 +193,10 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
     for (const auto& g : into_list)
       md << fmt::format("| {} | {:.1f} | {} | {} | `{}` |\n", g["seed"].get<std::uint64_t>(), g["t_s"].get<double>(),
                         g["instruction"].get<std::string>(), g["obstacle"].get<std::string>(), g["replay"].get<std::string>());
+  }
+  if (trials) {
+    trials->clear();
+    for (auto& r : results) trials->push_back(std::move(*r));
   }
   return j;
 }

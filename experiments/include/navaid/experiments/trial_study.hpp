@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "navaid/experiments/closed_loop_trial.hpp"
+
 namespace navaid::experiments {
 
 struct TrialStudySpec {
@@ -29,8 +31,10 @@ struct TrialStudySpec {
 
 /// Runs the trials and writes out/trials.csv, out/summary.json, out/summary.md and out/trials/
 /// seed-N/ folders as `keep` says; returns the summary. UsageError on a bad spec (names the option);
-/// a trial's error stops the study with the seed named.
-nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const std::filesystem::path& out);
+/// a trial's error stops the study with the seed named. `trials`, when given, receives every
+/// trial's result in seed order.
+nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const std::filesystem::path& out,
+                                       std::vector<TrialResult>* trials = nullptr);
 
 /// The `navaid trial` command that replays seed `seed` of the study into `out`.
 std::string replay_command(const TrialStudySpec& spec, std::uint64_t seed, const std::filesystem::path& out);
