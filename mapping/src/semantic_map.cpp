@@ -133,8 +133,18 @@ class TreeOpsT final : public TreeOps {
 
   MapVoxels occupied(const Vec3& lo, const Vec3& hi, double threshold) const override {
     MapVoxels out;
+    if (tree_->size() == 0) return out;
+    // The box is clipped to the tree's extent: OctoMap's box iterator wraps its 16-bit keys for
+    // corners beyond the addressable range (a window "everywhere" must not crash).
+    double x0, y0, z0, x1, y1, z1;
+    tree_->getMetricMin(x0, y0, z0);
+    tree_->getMetricMax(x1, y1, z1);
+    const Vec3 box_lo = lo.cwiseMax(Vec3(x0, y0, z0));
+    const Vec3 box_hi = hi.cwiseMin(Vec3(x1, y1, z1));
+    if ((box_lo.array() > box_hi.array()).any()) return out;
     const double threshold_log_odds = octomap::logodds(threshold);
-    for (auto it = tree_->begin_leafs_bbx(to_point(lo), to_point(hi)), end = tree_->end_leafs_bbx(); it != end; ++it) {
+    for (auto it = tree_->begin_leafs_bbx(to_point(box_lo), to_point(box_hi)), end = tree_->end_leafs_bbx(); it != end;
+         ++it) {
       if (it->getLogOdds() <= threshold_log_odds) continue;
       out.push_back(voxel(it.getCoordinate(), it.getSize(), *it));
     }

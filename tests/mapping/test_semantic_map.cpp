@@ -175,6 +175,23 @@ TEST_P(SemanticMapFiles, OtRoundTripKeepsOccupancyAndClasses) {
   }
 }
 
+TEST(SemanticMapFiles, AWindowBeyondTheAddressableRangeReadsTheWholeMap) {
+  // `navaid plan --map RUN/map` reads a saved map "everywhere" (a 1e6 m window): the box is
+  // clipped to the tree, where OctoMap's box iterator would wrap its keys and crash.
+  navaid::testing::ScratchDir dir("semantic-map-everywhere");
+  SemanticMap map(small_config());
+  map.set_window_center(Vec3(0, 0, 1));
+  map.insert(wall_cloud(3.05));
+  map.save(dir / "map.ot");
+  SemanticMapConfig whole = small_config();
+  whole.window_size_m = 1e6;
+  whole.window_below_m = whole.window_above_m = 1e6;
+  const SemanticMap back = SemanticMap::load(dir / "map.ot", whole);
+  EXPECT_EQ(back.occupied_voxels().size(), map.occupied_voxels().size());
+  const SemanticMap empty(whole);
+  EXPECT_TRUE(empty.occupied_voxels().empty());
+}
+
 INSTANTIATE_TEST_SUITE_P(BothPolicies, SemanticMapFiles, ::testing::Values(FusionPolicy::kMax, FusionPolicy::kBayes));
 
 TEST(SemanticMapFiles, CorruptTruncatedAndForeignFilesAreClearErrors) {
