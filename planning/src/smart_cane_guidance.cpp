@@ -6,6 +6,8 @@ SmartCaneGuidanceConfig SmartCaneGuidance::default_config() {
   SmartCaneGuidanceConfig c;
   c.guidance.replan_period_s = 0.1;
   c.wpg.horizon_m = 10.0;
+  c.wpg.traversal_weight = 2.0;
+  c.wpg.escape_distance_m = 1.0;
   return c;
 }
 
@@ -15,6 +17,8 @@ SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config) {
   if (!config.has("planning.guidance.replan_period_s")) c.guidance.replan_period_s = 0.1;
   c.wpg = read_wpg_config(config);
   if (!config.has("planning.wpg.horizon_m")) c.wpg.horizon_m = 10.0;
+  if (!config.has("planning.wpg.traversal_weight")) c.wpg.traversal_weight = 2.0;
+  if (!config.has("planning.wpg.escape_distance_m")) c.wpg.escape_distance_m = 1.0;
   c.pi = read_pi_heading_config(config);
   return c;
 }

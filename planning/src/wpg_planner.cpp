@@ -35,14 +35,17 @@ class WpgSpace {
   using State = WpgNode;
 
   WpgSpace(const WpgConfig& c, const std::vector<LfpcInput>& inputs, const LipmStepTable& table,
-           const mapping::Esdf2d& esdf, double margin_m, const Vec2& start, std::optional<Vec2> goal,
+           const mapping::Esdf2d& esdf, const mapping::CostMap& cost, double margin_m, const Vec2& start,
+           std::optional<double> escape_clearance, std::optional<Vec2> goal,
            std::optional<double> direction, GridDistanceHeuristic* grid)
       : c_(c),
         inputs_(inputs),
         table_(table),
         esdf_(esdf),
+        cost_(cost),
         margin_(margin_m),
         start_(start),
+        escape_clearance_(escape_clearance),
         goal_(goal),
         direction_(direction),
         grid_(grid),
@@ -105,21 +108,32 @@ class WpgSpace {
     // CheckSafe: the upcoming gait point (next.support_foot) and the CoM path. The previous gait
     // point (s.support_foot) was this check's upcoming one one step earlier (the start's is
     // checked before the search), so it is not looked up again.
-    if (!clear(next.support_foot, c_.foot_radius_m)) return;
+    if (!clear(next.support_foot, foot_clearance(next.support_foot))) return;
     double d_com = 0.0;
     for (const Vec2& p : samples_) {
       const std::optional<double> d = esdf_.distance(p);
-      if (!d || *d < c_.com_radius_m + margin_) return;
+      if (!d || *d < com_clearance(p)) return;
       d_com = *d;  // the last sample is the new node's CoM
     }
-    emit(WpgNode{next, false},
-         extra_cost + wpg_edge_cost(c_, (next.com - s.com).norm(), std::abs(relative.direction_rad), d_com - margin_));
+    emit(WpgNode{next, false}, extra_cost + wpg_edge_cost(c_, (next.com - s.com).norm(), std::abs(relative.direction_rad),
+                                                        d_com - margin_, cell_cost(next.com)));
   }
 
-  bool clear(const Vec2& p, double radius) const {
-    const std::optional<double> d = esdf_.distance(p);
-    return d && *d >= radius + margin_;
+  double cell_cost(const Vec2& p) const {
+    if (c_.traversal_weight == 0.0) return 0.0;
+    return static_cast<double>(cost_.value_at(p).value_or(0.0f));
   }
+
+  bool clear(const Vec2& p, double clearance) const {
+    const std::optional<double> d = esdf_.distance(p);
+    return d && *d >= clearance;
+  }
+
+  bool escaping(const Vec2& p) const { return escape_clearance_ && (p - start_).norm() < c_.escape_distance_m; }
+  double com_clearance(const Vec2& p) const {
+    return escaping(p) ? *escape_clearance_ : c_.com_radius_m + margin_;
+  }
+  double foot_clearance(const Vec2& p) const { return escaping(p) ? 0.0 : c_.foot_radius_m + margin_; }
 
   bool at_horizon(const WalkerState& s) const {
     return c_.horizon_m > 0.0 && (s.com - start_).norm() >= c_.horizon_m;
@@ -129,8 +143,10 @@ class WpgSpace {
   const std::vector<LfpcInput>& inputs_;
   const LipmStepTable& table_;
   const mapping::Esdf2d& esdf_;
+  const mapping::CostMap& cost_;
   double margin_;
   Vec2 start_;
+  std::optional<double> escape_clearance_;  // set when the start lies inside the body sphere's clearance
   std::optional<Vec2> goal_;
   std::optional<double> direction_;
   GridDistanceHeuristic* grid_;  // resumes its Dijkstra on queries
@@ -148,10 +164,11 @@ Plan endpoint_failure(GuidanceReason reason, std::string detail) {
 
 }  // namespace
 
-double wpg_edge_cost(const WpgConfig& c, double displacement_m, double turn_rad, double obstacle_distance_m) {
+double wpg_edge_cost(const WpgConfig& c, double displacement_m, double turn_rad, double obstacle_distance_m,
+                     double cell_cost) {
   const double risk =
       obstacle_distance_m < c.risk_distance_m ? c.risk_weight * (c.risk_distance_m - obstacle_distance_m) : 0.0;
-  return displacement_m + c.turn_weight * std::abs(turn_rad) + risk;
+  return displacement_m + c.turn_weight * std::abs(turn_rad) + risk + c.traversal_weight * displacement_m * cell_cost;
 }
 
 std::vector<LfpcInput> wpg_inputs(const WpgConfig& c) {
@@ -203,6 +220,10 @@ WpgConfig read_wpg_config(const Config& config) {
   c.turn_weight = config.get_double("planning.wpg.turn_weight", c.turn_weight, {0.0, 100.0});
   c.risk_weight = config.get_double("planning.wpg.risk_weight", c.risk_weight, {0.0, 100.0});
   c.risk_distance_m = config.get_double("planning.wpg.risk_distance_m", c.risk_distance_m, {0.0, 10.0});
+  c.traversal_weight = config.get_double("planning.wpg.traversal_weight", c.traversal_weight, {0.0, 100.0});
+  c.escape_distance_m = config.get_double("planning.wpg.escape_distance_m", c.escape_distance_m, {0.0, 10.0});
+  c.escape_min_clearance_m =
+      config.get_double("planning.wpg.escape_min_clearance_m", c.escape_min_clearance_m, {0.0, 2.0});
   c.grid_heuristic = config.get_string("planning.wpg.heuristic", "grid", {"grid", "euclidean"}) == "grid";
   c.heuristic_cell_m = config.get_double("planning.wpg.heuristic_cell_m", c.heuristic_cell_m, {0.01, 10.0});
   c.heuristic_weight = config.get_double("planning.wpg.heuristic_weight", c.heuristic_weight, {1.0, 10.0});
@@ -253,8 +274,19 @@ Plan WpgPlanner::plan(const PlanningProblem& problem) const {
     }
     return std::nullopt;
   };
-  if (std::optional<Plan> f = where("start", start)) return *f;
-  if (const std::optional<double> d = esdf.distance(s0.support_foot); !d || *d < config_.foot_radius_m + margin) {
+  // Escape (see WpgConfig::escape_distance_m): a start inside the body sphere's clearance but not
+  // in an obstacle keeps its own clearance for the first steps.
+  std::optional<double> escape_clearance;
+  if (const std::optional<double> d = esdf.distance(start);
+      config_.escape_distance_m > 0.0 && start.allFinite() && d && *d < config_.com_radius_m + margin &&
+      *d >= config_.escape_min_clearance_m) {
+    escape_clearance = *d - 1e-6;
+  }
+  if (!escape_clearance) {
+    if (std::optional<Plan> f = where("start", start)) return *f;
+  }
+  if (const std::optional<double> d = esdf.distance(s0.support_foot);
+      !escape_clearance && (!d || *d < config_.foot_radius_m + margin)) {
     return endpoint_failure(GuidanceReason::kStartBlocked,
                             fmt::format("the standing foot at ({:.2f}, {:.2f}) is within {:.2f} m of an obstacle",
                                         s0.support_foot.x(), s0.support_foot.y(), config_.foot_radius_m + margin));
@@ -268,7 +300,7 @@ Plan WpgPlanner::plan(const PlanningProblem& problem) const {
   if (problem.goal_W && config_.grid_heuristic) {
     grid.emplace(esdf, *problem.goal_W, start, config_.heuristic_cell_m, config_.com_radius_m + margin);
   }
-  const WpgSpace space(config_, inputs_, table_, esdf, margin, start, problem.goal_W,
+  const WpgSpace space(config_, inputs_, table_, esdf, *problem.cost, margin, start, escape_clearance, problem.goal_W,
                        problem.goal_W ? std::nullopt : problem.goal_direction_rad, grid ? &*grid : nullptr);
   SearchResult<WpgNode> r = best_first_search(space, WpgNode{s0, true}, config_.limits);
   r.time_s = std::chrono::duration<double>(Clock::now() - t0).count();  // the heuristic's Dijkstra included

@@ -199,6 +199,58 @@ TEST(WpgPlanner, ClearanceGrowsWithTheEstimatesSigma) {
   EXPECT_EQ(unsure.reason, GuidanceReason::kNoPath);
 }
 
+TEST(WpgCost, TraversalTermChargesTheCellCostPerMetre) {
+  WpgConfig c;
+  EXPECT_DOUBLE_EQ(wpg_edge_cost(c, 0.5, 0.0, 2.0, 0.5), 0.5);  // weight 0: eq. 9-10 alone
+  c.traversal_weight = 2.0;
+  EXPECT_DOUBLE_EQ(wpg_edge_cost(c, 0.5, 0.0, 2.0, 0.5), 0.5 + 2.0 * 0.5 * 0.5);
+  EXPECT_DOUBLE_EQ(wpg_edge_cost(c, 0.5, 0.0, 2.0, 0.0), 0.5);  // seen free ground costs nothing more
+}
+
+TEST(WpgPlanner, TraversalWeightKeepsThePathOnSeenGround) {
+  // An open room whose lower half is seen free (cost 0) and upper half unseen (0.5), a goal on the
+  // boundary: with the weight the path stays below, on seen ground; without it, either half will do.
+  CostMap m = room(12.0, 8.0);
+  for (int x = 1; x < 119; ++x)
+    for (int y = 40; y < 79; ++y) m.at(x, y) = 0.5F;
+  const mapping::Esdf2d esdf = esdf_of(m);
+  WpgConfig c;
+  c.traversal_weight = 2.0;
+  // Start and goal just above the boundary: the straight way lies in unseen cells.
+  const Plan p = plan_on(m, esdf, PlanarPose{Vec2(1.5, 4.2), 0.0}, Vec2(10.5, 4.2), c);
+  ASSERT_TRUE(p.found()) << p.detail;
+  std::size_t unseen = 0;
+  for (const Vec2& q : p.path_W) unseen += q.y() >= 4.0 ? 1 : 0;
+  EXPECT_LE(unseen, 4U);  // the first steps and the arrival only
+  const Plan plain = plan_on(m, esdf, PlanarPose{Vec2(1.5, 4.2), 0.0}, Vec2(10.5, 4.2));
+  ASSERT_TRUE(plain.found());
+  std::size_t plain_unseen = 0;
+  for (const Vec2& q : plain.path_W) plain_unseen += q.y() >= 4.0 ? 1 : 0;
+  EXPECT_GT(plain_unseen, unseen + 5);
+  EXPECT_GT(p.cost, p.length_m);  // the unseen steps are charged
+}
+
+TEST(WpgPlanner, EscapeLeadsAUserStandingTooNearAWallAwayFromIt) {
+  const CostMap m = room(12.0, 6.0);
+  const mapping::Esdf2d esdf = esdf_of(m);
+  const PlanarPose against_wall{Vec2(3.0, 0.25), 0.0};  // 0.15 m from the wall cell's centre
+  WpgConfig c;
+  const Plan stuck = plan_on(m, esdf, against_wall, Vec2(10.0, 3.0), c);
+  EXPECT_EQ(stuck.reason, GuidanceReason::kStartBlocked);  // the paper's CheckSafe
+  c.escape_distance_m = 1.0;
+  const Plan away = plan_on(m, esdf, against_wall, Vec2(10.0, 3.0), c);
+  ASSERT_TRUE(away.found()) << away.detail;
+  // Within 1 m of the start the CoM keeps at least the start's clearance; beyond it the full sphere.
+  const double d0 = *esdf.distance(against_wall.position);
+  for (const Vec2& q : away.path_W) {
+    const bool near = (q - against_wall.position).norm() < 1.0;
+    EXPECT_GE(*esdf.distance(q), (near ? d0 : c.com_radius_m) - 1e-6);
+  }
+  // Standing in the wall stays blocked.
+  const Plan in_wall = plan_on(m, esdf, PlanarPose{Vec2(3.0, 0.05), 0.0}, Vec2(10.0, 3.0), c);
+  EXPECT_EQ(in_wall.reason, GuidanceReason::kStartBlocked);
+}
+
 TEST(WpgPlanner, DirectionalSubgoalInsideTheHorizon) {
   const CostMap m = room(20.0, 20.0);
   const mapping::Esdf2d esdf = esdf_of(m);

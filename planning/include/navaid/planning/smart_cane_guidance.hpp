@@ -17,12 +17,14 @@ namespace navaid::planning {
 
 struct SmartCaneGuidanceConfig {
   PathGuidanceConfig guidance;  ///< replan_period_s = 0.1 (10 Hz) by default here
-  WpgConfig wpg;                ///< horizon_m = 10 (the sensing range) by default here
+  WpgConfig wpg;                ///< horizon_m 10 (the sensing range), traversal_weight 2, escape_distance_m 1 here
   PiHeadingConfig pi;
 };
 
 /// Keys planning.guidance.*, planning.follow.*, planning.wpg.*, planning.pi.*, with the two
-/// defaults above (planning.guidance.replan_period_s 0.1, planning.wpg.horizon_m 10).
+/// defaults above (planning.guidance.replan_period_s 0.1, planning.wpg.horizon_m 10,
+/// planning.wpg.traversal_weight 2: the cane camera leaves the walls beside the user unseen;
+/// planning.wpg.escape_distance_m 1: a user who veered against a wall is led off it, not stopped).
 SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config);
 
 class SmartCaneGuidance {

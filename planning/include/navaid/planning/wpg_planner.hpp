@@ -42,6 +42,19 @@ struct WpgConfig {
   double turn_weight = 0.5;            ///< sigma of eq. 9 [cost per rad]
   double risk_weight = 1.0;            ///< w_o of eq. 10
   double risk_distance_m = 0.6;        ///< d_max of eq. 10 (not in the paper: 0.3 m beyond the body)
+  /// Not in the paper (its LiDAR sees the walls around the user): each step also costs
+  /// traversal_weight x its displacement x the cost-map value at the new CoM, so that a camera's
+  /// unseen cells (cost mapping.cost.unknown_cost) are walked only where seen ground offers no way.
+  /// 0 = eq. 9-10 alone (planning on complete maps, Table I); the Smart Cane's guidance uses 2.
+  double traversal_weight = 0.0;
+  /// Not in the paper: a user who already stands closer to an obstacle than the body sphere (a
+  /// veer, a bump) would be "start blocked" and told to stop for good. With escape_distance_m > 0
+  /// the search leaves such a start: within this distance of it the CoM needs only the start's own
+  /// clearance and the feet only free cells; beyond it, the full spheres again. A start inside an
+  /// obstacle (clearance below escape_min_clearance_m) stays blocked. 0 = the paper's CheckSafe;
+  /// the Smart Cane's guidance uses 1 m.
+  double escape_distance_m = 0.0;
+  double escape_min_clearance_m = 0.05;
 
   bool grid_heuristic = true;          ///< coarse-grid distance (grid_distance_heuristic.hpp), else straight
   double heuristic_cell_m = 0.5;       ///< its coarse cell
@@ -57,13 +70,16 @@ struct WpgConfig {
 /// Keys planning.wpg.*: gravity, com_height_m, support_time_s, lfpc_gain (must satisfy eq. 8 for
 /// the model: a ConfigError says the interval otherwise), step_length_m [min, max], step_lengths,
 /// step_width_m [min, max], step_widths, max_turn_deg, turns_per_side, com_samples, com_radius_m,
-/// foot_radius_m, clearance_k_sigma, turn_weight, risk_weight, risk_distance_m, heuristic (grid |
+/// foot_radius_m, clearance_k_sigma, turn_weight, risk_weight, risk_distance_m, traversal_weight, escape_distance_m,
+/// escape_min_clearance_m, heuristic (grid |
 /// euclidean), heuristic_cell_m, heuristic_weight,
 /// prune_cell_m, heading_bins, goal_tolerance_m, horizon_m, direction_beta; plus planning.search.*.
 WpgConfig read_wpg_config(const Config& config);
 
-/// Eq. 9-10 for one step: CoM displacement, turn and the ESDF distance at the new CoM.
-double wpg_edge_cost(const WpgConfig& c, double displacement_m, double turn_rad, double obstacle_distance_m);
+/// Eq. 9-10 for one step: CoM displacement, turn and the ESDF distance at the new CoM; plus
+/// traversal_weight x displacement x cell_cost (the cost map at the new CoM, 0 when not known).
+double wpg_edge_cost(const WpgConfig& c, double displacement_m, double turn_rad, double obstacle_distance_m,
+                     double cell_cost = 0.0);
 
 /// The LFPC inputs of one expansion relative to walking direction 0 (dtheta = direction_rad).
 std::vector<LfpcInput> wpg_inputs(const WpgConfig& c);
