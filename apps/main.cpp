@@ -3,16 +3,40 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <string>
+
+#include <Eigen/Core>
+#if __has_include(<ceres/version.h>)
+#include <ceres/version.h>
+#endif
 
 #include "commands.hpp"
 #include "navaid/core/allocator.hpp"
 #include "navaid/core/errors.hpp"
+
+namespace navaid::cli {
+namespace {
+// The version, the build type and the numerical libraries the estimates depend on: what a
+// results table needs to say which navaid made it.
+std::string version_text() {
+  std::string text = std::string("navaid ") + NAVAID_VERSION + " (" +
+                     (std::string(NAVAID_BUILD_TYPE).empty() ? std::string("no build type") : NAVAID_BUILD_TYPE) +
+                     " build; Eigen " + std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +
+                     "." + std::to_string(EIGEN_MINOR_VERSION);
+#ifdef CERES_VERSION_STRING
+  text += std::string(", Ceres ") + CERES_VERSION_STRING;
+#endif
+  return text + ")";
+}
+}  // namespace
+}  // namespace navaid::cli
 
 int main(int argc, char** argv) {
   navaid::keep_freed_memory();
   CLI::App app{"navaid: navigation aids for blind and low-vision people.\n"
                "Reads recordings (navaid, EuRoC/ASL, TUM RGB-D, NMEA captures, TUM trajectories) and simulates new ones."};
   app.set_help_all_flag("--help-all", "Help for every command");
+  app.set_version_flag("--version", navaid::cli::version_text());
   int verbosity = 0;
   app.add_flag("-v,--verbose", verbosity, "More log output (repeat for debug)");
   app.require_subcommand(1);

@@ -29,6 +29,14 @@ TEST(Cli, HelpListsEveryCommand) {
   EXPECT_NE(navaid_cli("frobnicate").status, 0);
 }
 
+TEST(Cli, VersionNamesTheReleaseAndTheBuild) {
+  const CliRun run = navaid_cli("--version");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_NE(run.output.find("navaid 0."), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Eigen 3."), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Ceres 2."), std::string::npos) << run.output;
+}
+
 TEST(Cli, InfoOnEveryCaptureOfTheGnssCollection) {
   NAVAID_REQUIRE_SHARED_DATA();
   const fs::path folder = shared_data_dir() / "gpsd-nmea";
