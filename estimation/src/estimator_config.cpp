@@ -77,6 +77,8 @@ EstimatorConfig read_estimator_config(const Config& c) {
   read_mag(c, e);
 
   e.far_threshold_m = c.get_double("estimator.features.far_threshold", e.far_threshold_m, {0.1, 1000});
+  e.far_depth_sigma_scale =
+      c.get_double("estimator.features.far_depth_sigma_scale", e.far_depth_sigma_scale, {0, 1e6});
   static const char* const policy_names[] = {"free", "fixed"};
   static const FarFeaturePolicy policies[] = {FarFeaturePolicy::kFree, FarFeaturePolicy::kFixed};
   e.far_policy = parse_enum(c.get_string("estimator.features.far_policy", "free", {"free", "fixed"}), policy_names,

@@ -477,14 +477,24 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
     } else if (estimated) {
       r.push_back({std::make_shared<AnchorBearingFactor>(a.m, focal_px, cfg.pixel_sigma_px), loss, {track.landmark}});
     }
+    // A free far feature's weak depth prior (EstimatorConfig::far_depth_sigma_scale): not a depth
+    // factor of the paper's, only what keeps its inverse depth determined while the camera turns.
+    const bool far_prior = !near && !fixed && a.depth_m && sigma_lambda > 0 && cfg.far_depth_sigma_scale > 0;
+    const double far_sigma = sigma_lambda * cfg.far_depth_sigma_scale;
     if (estimated) {
       if (near && cfg.use_inverse_depth) {
         r.push_back({std::make_shared<AnchorInverseDepthFactor>(*a.depth_m, sigma_lambda), nullptr, {track.landmark}});
         depth_factor = true;
+      } else if (far_prior) {
+        r.push_back({std::make_shared<AnchorInverseDepthFactor>(*a.depth_m, far_sigma), nullptr, {track.landmark},
+                     "far_depth_prior"});
       }
     } else if (near && cfg.use_inverse_depth) {
       r.push_back({std::make_shared<InverseDepthFactor>(*a.depth_m, sigma_lambda), nullptr, {&track.inverse_depth()}});
       depth_factor = true;
+    } else if (far_prior) {
+      r.push_back({std::make_shared<InverseDepthFactor>(*a.depth_m, far_sigma), nullptr, {&track.inverse_depth()},
+                   "far_depth_prior"});
     }
     if (fixed && fixed_inverse_depths) fixed_inverse_depths->push_back(&track.inverse_depth());
     ++c.all_features;

@@ -84,6 +84,9 @@ struct Residual {
   std::shared_ptr<ceres::CostFunction> cost;
   std::shared_ptr<ceres::LossFunction> loss;
   std::vector<double*> blocks;
+  /// The residual diagnostics' type when the factor's class does not say it (a far feature's weak
+  /// depth prior is an inverse-depth factor, but not a measurement at its noise model).
+  const char* diagnostic_type = nullptr;
 };
 
 struct NewestCovariance {

@@ -49,7 +49,8 @@ void SlidingWindowEstimator::Impl::accumulate_residual_statistics(const std::vec
     if (!res.cost->Evaluate(res.blocks.data(), r.data(), nullptr)) continue;
     double sq = 0;
     for (double v : r) sq += v * v;
-    ResidualStatistics& s = stats.residuals[factor_type(res.cost.get())];
+    ResidualStatistics& s =
+        stats.residuals[res.diagnostic_type != nullptr ? std::string(res.diagnostic_type) : factor_type(res.cost.get())];
     ++s.factors;
     s.rows += r.size();
     s.squared_sum += sq;

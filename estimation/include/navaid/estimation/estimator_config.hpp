@@ -79,6 +79,12 @@ struct EstimatorConfig {
   // Features.
   double far_threshold_m = 3.0;
   FarFeaturePolicy far_policy = FarFeaturePolicy::kFree;
+  /// A free far feature keeps a weak prior on its inverse depth: the anchor's measured depth with
+  /// sigma_lambda x this. Without it (0, the paper as written) nothing constrains a far inverse
+  /// depth while the camera only turns (a user standing and scanning with the head or cane): the
+  /// window then drifts like dead reckoning (1.6-1.8 m in 30 s, docs/estimator.md). Large enough
+  /// that parallax, whenever there is some, decides the depth.
+  double far_depth_sigma_scale = 10.0;
   double pixel_sigma_px = 1.5;
   /// Below this many features with usable visual factors the frame is IMU-only.
   int min_visual_features = 8;
