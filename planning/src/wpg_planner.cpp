@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
@@ -133,7 +134,11 @@ class WpgSpace {
   double com_clearance(const Vec2& p) const {
     return escaping(p) ? *escape_clearance_ : c_.com_radius_m + margin_;
   }
-  double foot_clearance(const Vec2& p) const { return escaping(p) ? 0.0 : c_.foot_radius_m + margin_; }
+  // Within the escape the gait points are not checked: from rest the LFPC puts the push-off foot
+  // behind the CoM, i.e. into the wall the user stands against, whichever way they would leave.
+  double foot_clearance(const Vec2& p) const {
+    return escaping(p) ? -std::numeric_limits<double>::infinity() : c_.foot_radius_m + margin_;
+  }
 
   bool at_horizon(const WalkerState& s) const {
     return c_.horizon_m > 0.0 && (s.com - start_).norm() >= c_.horizon_m;

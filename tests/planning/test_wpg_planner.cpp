@@ -246,6 +246,23 @@ TEST(WpgPlanner, EscapeLeadsAUserStandingTooNearAWallAwayFromIt) {
     const bool near = (q - against_wall.position).norm() < 1.0;
     EXPECT_GE(*esdf.distance(q), (near ? d0 : c.com_radius_m) - 1e-6);
   }
+  // Standing along the wall, the goal across the room: from rest the push-off foot lands behind the
+  // CoM, in the wall; the escape leaves the gait points unchecked near the start.
+  const Plan across = plan_on(m, esdf, against_wall, Vec2(3.0, 5.0), c);
+  ASSERT_TRUE(across.found()) << across.detail;
+  EXPECT_GE(*esdf.distance(across.path_W.back()), c.com_radius_m - 1e-9);  // the full sphere at the end
+  // The trial's case: stopped 0.1 m before an obstacle, 0.4 m from the wall behind the right
+  // shoulder, the way round on the left. From rest the push-off foot lands behind the CoM, in the
+  // wall, for every turn to the left; the escape leaves the gait points unchecked near the start.
+  CostMap corridor = room(12.0, 3.0);
+  for (int x = 46; x < 53; ++x)
+    for (int y = 1; y < 9; ++y) corridor.at(x, y) = 1.0F;
+  const mapping::Esdf2d corridor_esdf = esdf_of(corridor);
+  const Plan around = plan_on(corridor, corridor_esdf, PlanarPose{Vec2(4.45, 0.45), 0.0}, Vec2(10.0, 1.5), c);
+  ASSERT_TRUE(around.found()) << around.detail;
+  double left_most = 0.0;
+  for (const Vec2& q : around.path_W) left_most = std::max(left_most, q.y());
+  EXPECT_GT(left_most, 0.9 + c.com_radius_m);  // round the obstacle on the left
   // Standing in the wall stays blocked.
   const Plan in_wall = plan_on(m, esdf, PlanarPose{Vec2(3.0, 0.05), 0.0}, Vec2(10.0, 3.0), c);
   EXPECT_EQ(in_wall.reason, GuidanceReason::kStartBlocked);

@@ -50,7 +50,8 @@ struct WpgConfig {
   /// Not in the paper: a user who already stands closer to an obstacle than the body sphere (a
   /// veer, a bump) would be "start blocked" and told to stop for good. With escape_distance_m > 0
   /// the search leaves such a start: within this distance of it the CoM needs only the start's own
-  /// clearance and the feet only free cells; beyond it, the full spheres again. A start inside an
+  /// clearance and the gait points are not checked (from rest the push-off foot lands behind the
+  /// CoM, in the wall being left); beyond it, the full spheres again. A start inside an
   /// obstacle (clearance below escape_min_clearance_m) stays blocked. 0 = the paper's CheckSafe;
   /// the Smart Cane's guidance uses 1 m.
   double escape_distance_m = 0.0;
