@@ -63,6 +63,8 @@ void PersonMotion::step(const MotionCommand& c, double dt) {
   if (!(c.speed_mps >= 0) || !std::isfinite(c.speed_mps))
     throw std::invalid_argument("PersonMotion::step: speed must be finite and >= 0");
   const PersonMotionConfig& k = config_;
+  impact_a_ = Vec2::Zero();
+  last_dt_ = dt;
   if (c.new_direction) veer_ = 0;
   const double r_target =
       c.follow_heading ? std::clamp(k.heading_gain_per_s * wrap(c.heading_rad + (c.speed_mps > 0 ? veer_ : 0.0) - psi_),
@@ -96,6 +98,7 @@ void PersonMotion::step(const MotionCommand& c, double dt) {
 }
 
 void PersonMotion::halt_at(const Vec2& position) {
+  if (last_dt_ > 0) impact_a_ = -u_ * Vec2(std::cos(psi_), std::sin(psi_)) / last_dt_;
   p_ = position;
   u_ = 0;
   du_ = 0;
@@ -115,7 +118,7 @@ KinematicState PersonMotion::state() const {
                 Vec3(p_.x(), p_.y(), k.ground_z_m + k.mount_height_m + k.bob_amplitude_m * std::sin(gait_phase_)));
   const Vec2 v = u_ * tangent, a = du_ * tangent + u_ * r_ * normal;
   s.v_W = Vec3(v.x(), v.y(), k.bob_amplitude_m * std::cos(gait_phase_) * phase_rate);
-  s.a_W = Vec3(a.x(), a.y(),
+  s.a_W = Vec3(a.x() + impact_a_.x(), a.y() + impact_a_.y(),
                k.bob_amplitude_m * (std::cos(gait_phase_) * phase_accel - std::sin(gait_phase_) * phase_rate * phase_rate));
   s.omega_B = Vec3(0, 0, r_ + scan_rate);
   s.alpha_B = Vec3(0, 0, dr_ + scan_accel);

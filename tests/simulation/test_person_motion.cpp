@@ -61,6 +61,30 @@ TEST(PersonMotion, FollowsATurnRateAndStops) {
   EXPECT_EQ(body.position(), p);
 }
 
+TEST(PersonMotion, ABumpIsFeltAsTheDecelerationThatStopsTheWalk) {
+  // The IMU integrates a_W between its samples: across the step that ran into the wall, the
+  // reported acceleration must take the walking velocity to zero, or the estimator's IMU keeps
+  // walking while the camera stands.
+  PersonMotion body(PersonMotionConfig{}, Vec2::Zero(), 0.4, 3);
+  MotionCommand walk;
+  walk.speed_mps = 1.0;
+  walk.heading_rad = 0.4;
+  const double dt = 0.005;
+  for (int k = 0; k < 600; ++k) body.step(walk, dt);
+  const Vec2 from = body.position();
+  const KinematicState before = body.state();
+  body.step(walk, dt);
+  body.halt_at(from);
+  const KinematicState hit = body.state();
+  EXPECT_EQ(body.speed(), 0.0);
+  EXPECT_EQ(hit.v_W.head<2>(), Vec2::Zero());
+  EXPECT_LT((before.v_W.head<2>() + hit.a_W.head<2>() * dt).norm(), 0.01);  // v + a dt = 0
+  MotionCommand stand;
+  stand.heading_rad = body.heading();
+  body.step(stand, dt);
+  EXPECT_LT(body.state().a_W.head<2>().norm(), 1e-9);  // one impact, then standing
+}
+
 TEST(PersonMotion, VeerGrowsWhileWalkingIsSeededAndClearsOnANewDirection) {
   PersonMotionConfig c;
   c.veer_sigma = 0.05;

@@ -62,7 +62,10 @@ class PersonMotion {
   /// Advances by dt > 0 [s] under `command` (held over the step). Throws std::invalid_argument for
   /// dt <= 0.
   void step(const MotionCommand& command, double dt);
-  /// The body ran into something: back at `position` (where the step began), standing.
+  /// The body ran into something: back at `position` (where the step began), standing. The stop
+  /// is an impact: state() carries the deceleration that takes the walking velocity to zero over
+  /// the last step until the next step(), so an IMU sampled from it feels the bump (without it
+  /// the IMU kept walking while the camera stood, and the estimator failed at every bump).
   void halt_at(const Vec2& position);
 
   /// Body state now (exact derivatives of the motion over the last step, gait and scan included).
@@ -88,6 +91,8 @@ class PersonMotion {
   Vec2 p_;
   double psi_ = 0, u_ = 0, r_ = 0;
   double du_ = 0, dr_ = 0;        // accelerations over the last step
+  double last_dt_ = 0;            // the last step's length [s]
+  Vec2 impact_a_ = Vec2::Zero();  // the bump's deceleration, until the next step [m/s^2]
   double veer_ = 0;               // heading error of the held direction [rad]
   double gait_phase_ = 0;         // radians, advances at 2 pi u / step length
   double walked_ = 0;
