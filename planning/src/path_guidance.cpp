@@ -126,6 +126,7 @@ GuidanceCommand PathGuidance::update(const StateEstimate& estimate, const mappin
     problem.goal_W = subgoal.goal_W;
     problem.goal_direction_rad = subgoal.direction_rad;
     problem.sigma_xy_m = u.sigma_xy;
+    problem.start_speed_mps = std::max(0.0, estimate.v_W.head<2>().dot(Vec2(std::cos(yaw), std::sin(yaw))));
     plan_ = planner_->plan(problem);
     planned_for_ = subgoal;
     planned_at_ = estimate.t;

@@ -229,6 +229,8 @@ WpgConfig read_wpg_config(const Config& config) {
   c.escape_distance_m = config.get_double("planning.wpg.escape_distance_m", c.escape_distance_m, {0.0, 10.0});
   c.escape_min_clearance_m =
       config.get_double("planning.wpg.escape_min_clearance_m", c.escape_min_clearance_m, {0.0, 2.0});
+  c.walking_start_speed_mps =
+      config.get_double("planning.wpg.walking_start_speed_mps", c.walking_start_speed_mps, {0.0, 10.0});
   c.grid_heuristic = config.get_string("planning.wpg.heuristic", "grid", {"grid", "euclidean"}) == "grid";
   c.heuristic_cell_m = config.get_double("planning.wpg.heuristic_cell_m", c.heuristic_cell_m, {0.01, 10.0});
   c.heuristic_weight = config.get_double("planning.wpg.heuristic_weight", c.heuristic_weight, {1.0, 10.0});
@@ -307,7 +309,19 @@ Plan WpgPlanner::plan(const PlanningProblem& problem) const {
   }
   const WpgSpace space(config_, inputs_, table_, esdf, *problem.cost, margin, start, escape_clearance, problem.goal_W,
                        problem.goal_W ? std::nullopt : problem.goal_direction_rad, grid ? &*grid : nullptr);
-  SearchResult<WpgNode> r = best_first_search(space, WpgNode{s0, true}, config_.limits);
+  // A walk in progress goes on from its walking state; from rest only when that finds no way.
+  SearchResult<WpgNode> r;
+  std::size_t expanded_walking = 0;
+  if (problem.start_speed_mps >= config_.walking_start_speed_mps && config_.walking_start_speed_mps > 0) {
+    WalkerState walking = s0;
+    walking.velocity = problem.start_speed_mps * Vec2(std::cos(yaw), std::sin(yaw));
+    r = best_first_search(space, WpgNode{walking, false}, config_.limits);
+    expanded_walking = r.expanded;
+  }
+  if (!r.found()) {
+    r = best_first_search(space, WpgNode{s0, true}, config_.limits);
+    r.expanded += expanded_walking;
+  }
   r.time_s = std::chrono::duration<double>(Clock::now() - t0).count();  // the heuristic's Dijkstra included
   Plan p = plan_outcome(r.status, r.expanded, r.time_s);
   if (!r.found()) return p;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/angles.hpp"
 #include "navaid/planning/grid_astar.hpp"
 #include "navaid/planning/grid_distance_heuristic.hpp"
 #include "navaid/planning/wpg_planner.hpp"
@@ -228,6 +229,32 @@ TEST(WpgPlanner, TraversalWeightKeepsThePathOnSeenGround) {
   for (const Vec2& q : plain.path_W) plain_unseen += q.y() >= 4.0 ? 1 : 0;
   EXPECT_GT(plain_unseen, unseen + 5);
   EXPECT_GT(p.cost, p.length_m);  // the unseen steps are charged
+}
+
+TEST(WpgPlanner, AWalkInProgressGoesOnInsteadOfTurningOnTheSpot) {
+  const CostMap m = room(12.0, 8.0);
+  const mapping::Esdf2d esdf = esdf_of(m);
+  const WpgConfig c;
+  PlanningProblem p;
+  p.cost = &m;
+  p.esdf = &esdf;
+  p.start = PlanarPose{Vec2(5.0, 4.0), 0.0};
+  p.goal_W = Vec2(2.0, 4.0);  // behind the user
+  const Plan standing = WpgPlanner(c).plan(p);
+  ASSERT_TRUE(standing.found());
+  EXPECT_GT(std::abs(wrap_angle(standing.yaw_rad[1])), 2.5);  // turns round on the spot
+  p.start_speed_mps = 1.0;
+  const Plan walking = WpgPlanner(c).plan(p);
+  ASSERT_TRUE(walking.found()) << walking.detail;
+  for (std::size_t i = 1; i < walking.yaw_rad.size(); ++i)  // a U-turn in steps of at most 30 deg
+    EXPECT_LE(std::abs(wrap_angle(walking.yaw_rad[i] - walking.yaw_rad[i - 1])), c.max_turn_rad + 1e-9) << i;
+  EXPECT_GT(walking.length_m, standing.length_m);
+  // Walking at a wall with no room to turn: it stops and turns on the spot instead of giving up.
+  p.start = PlanarPose{Vec2(11.0, 4.0), 0.0};
+  p.goal_W = Vec2(8.0, 4.0);
+  const Plan cornered = WpgPlanner(c).plan(p);
+  ASSERT_TRUE(cornered.found()) << cornered.detail;
+  EXPECT_GT(std::abs(wrap_angle(cornered.yaw_rad[1])), 2.5);
 }
 
 TEST(WpgPlanner, EscapeLeadsAUserStandingTooNearAWallAwayFromIt) {

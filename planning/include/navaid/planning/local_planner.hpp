@@ -33,6 +33,9 @@ struct PlanningProblem {
   std::optional<double> goal_direction_rad;///< a directional subgoal: a heading in W (eLabrador)
   /// Horizontal position sigma of the estimate [m]: planners widen their clearance by k sigma.
   double sigma_xy_m = 0.0;
+  /// The user's walking speed along start.yaw_rad [m/s] (0: standing). A footstep planner (WPG)
+  /// continues a walk in progress instead of planning as if the user could turn on the spot.
+  double start_speed_mps = 0.0;
 };
 
 struct Plan {

@@ -56,6 +56,12 @@ struct WpgConfig {
   /// the Smart Cane's guidance uses 1 m.
   double escape_distance_m = 0.0;
   double escape_min_clearance_m = 0.05;
+  /// A start at least this fast (PlanningProblem::start_speed_mps) is a walk in progress: the search
+  /// starts from that walking state, whose steps turn at most max_turn_rad each, and only when it
+  /// finds no way does it plan from rest (stop, turn on the spot). Re-planning at 10 Hz from rest
+  /// made every cycle free to turn the user round at the cost of sigma |turn|, and the plans of
+  /// successive cycles flipped between ways (measured in closed loop: docs/simulated-users.md).
+  double walking_start_speed_mps = 0.2;
 
   bool grid_heuristic = true;          ///< coarse-grid distance (grid_distance_heuristic.hpp), else straight
   double heuristic_cell_m = 0.5;       ///< its coarse cell
@@ -72,7 +78,7 @@ struct WpgConfig {
 /// the model: a ConfigError says the interval otherwise), step_length_m [min, max], step_lengths,
 /// step_width_m [min, max], step_widths, max_turn_deg, turns_per_side, com_samples, com_radius_m,
 /// foot_radius_m, clearance_k_sigma, turn_weight, risk_weight, risk_distance_m, traversal_weight, escape_distance_m,
-/// escape_min_clearance_m, heuristic (grid |
+/// escape_min_clearance_m, walking_start_speed_mps, heuristic (grid |
 /// euclidean), heuristic_cell_m, heuristic_weight,
 /// prune_cell_m, heading_bins, goal_tolerance_m, horizon_m, direction_beta; plus planning.search.*.
 WpgConfig read_wpg_config(const Config& config);
