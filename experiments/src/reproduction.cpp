@@ -109,6 +109,15 @@ std::vector<Reproduction> make_registry() {
       "augmented-cane-table3.3.yaml: obstacle-course, augmented-cane, sighted-blindfolded users, 11 seeds per cost "
       "function through navaid trial; --quick: 3 seeds; --seeds N: N",
       "augmented-cane-table3.3.yaml", run_augmented_cane_table3_3));
+  list.push_back(entry(
+      "smart-cane-table2",
+      "Smart Cane Table II: two-point touch vs A* vs WPG guidance in the corridor, simulated users in closed loop",
+      "smart-cane-biped-walking-path-generation.txt, §V-C, Table II and Fig. 11",
+      "table2.md, table2.csv (duration and contacts: the paper's mean and SD beside ours, Welch's t test per "
+      "pair), verdict.md, two-point-touch/, astar/ and wpg/ (the trial studies: trials.csv, summary.md)",
+      "smart-cane-table2.yaml: corridor, typical users, the white cane alone and the smart-cane preset with "
+      "planning.smart_cane.planner astar and wpg, 10 seeds each through navaid trial; --quick: 3 seeds; --seeds N: N",
+      "smart-cane-table2.yaml", run_smart_cane_table2));
   return list;
 }
 

@@ -19,6 +19,19 @@ namespace {
 
 using mapping::Vec2;
 
+/// The last point of the straight line from `from` to `goal` that is still on the map, half a
+/// metre inside its edge (bisection: the map is a rectangle around `from`).
+Vec2 toward_map_edge(const Vec2& from, const Vec2& goal, const mapping::GridGeometry& g) {
+  const Vec2 d = goal - from;
+  const Vec2 inset = 0.5 * d.normalized();
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g.contains(g.cell_of(from + mid * d + inset)) ? lo : hi) = mid;
+  }
+  return from + lo * d;
+}
+
 class WalkingPathStage final : public GuidanceStage {
  public:
   explicit WalkingPathStage(const GuidanceStageContext& c)
@@ -35,7 +48,7 @@ class WalkingPathStage final : public GuidanceStage {
 
   GuidanceOutput update(const GuidanceInput& in) override {
     GuidanceOutput out;
-    out.planner = "wpg";
+    out.planner = std::string(guidance_.planner());
     const StateEstimate& e = in.estimate;
     const bool localised = e.mode != EstimatorMode::kInitializing && e.mode != EstimatorMode::kLost;
     if (!goal_W_ && localised) goal_W_ = anchor_goal(e);
@@ -53,6 +66,9 @@ class WalkingPathStage final : public GuidanceStage {
     const auto& geometry = in.maps->cost.geometry();
     if (geometry.contains(geometry.cell_of(*goal_W_))) {
       subgoal.goal_W = *goal_W_;
+    } else if (guidance_.planner() == "astar") {
+      // Grid A* takes point goals only: the goal's direction where it leaves the local map.
+      subgoal.goal_W = toward_map_edge(e.T_W_B.t.head<2>(), *goal_W_, geometry);
     } else {
       const Vec2 d = *goal_W_ - e.T_W_B.t.head<2>();
       subgoal.direction_rad = std::atan2(d.y(), d.x());
@@ -65,7 +81,7 @@ class WalkingPathStage final : public GuidanceStage {
 
   nlohmann::ordered_json summary() const override {
     const auto& s = guidance_.chain().stats();
-    nlohmann::ordered_json j = {{"planner", "wpg"}, {"updates", s.updates}, {"plans", s.plans},
+    nlohmann::ordered_json j = {{"planner", guidance_.planner()}, {"updates", s.updates}, {"plans", s.plans},
                                 {"plans_failed", s.plans_failed}, {"withheld", s.locating}, {"blocked", s.blocked}};
     if (goal_W_) j["goal_W"] = {goal_W_->x(), goal_W_->y()};
     return j;

@@ -1,5 +1,7 @@
 #include "navaid/planning/smart_cane_guidance.hpp"
 
+#include "navaid/core/errors.hpp"
+
 namespace navaid::planning {
 
 SmartCaneGuidanceConfig SmartCaneGuidance::default_config() {
@@ -20,11 +22,21 @@ SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config) {
   if (!config.has("planning.wpg.traversal_weight")) c.wpg.traversal_weight = 2.0;
   if (!config.has("planning.wpg.escape_distance_m")) c.wpg.escape_distance_m = 1.0;
   c.pi = read_pi_heading_config(config);
+  c.planner = config.get_string("planning.smart_cane.planner", c.planner, {"wpg", "astar"});
+  c.astar = read_grid_astar_config(config);
   return c;
 }
 
+namespace {
+std::unique_ptr<LocalPlanner> smart_cane_planner(const SmartCaneGuidanceConfig& c) {
+  if (c.planner == "astar") return std::make_unique<GridAStarPlanner>(c.astar);
+  if (c.planner != "wpg") throw ConfigError("", "planning.smart_cane.planner", "must be wpg or astar, not '" + c.planner + "'");
+  return std::make_unique<WpgPlanner>(c.wpg);
+}
+}  // namespace
+
 SmartCaneGuidance::SmartCaneGuidance(const SmartCaneGuidanceConfig& config)
-    : chain_(config.guidance, std::make_unique<WpgPlanner>(config.wpg)), pi_(config.pi) {}
+    : planner_(config.planner), chain_(config.guidance, smart_cane_planner(config)), pi_(config.pi) {}
 
 GuidanceCommand SmartCaneGuidance::update(const StateEstimate& estimate, const mapping::CostMap& cost,
                                           const mapping::Esdf2d& esdf, const Subgoal& subgoal) {

@@ -162,4 +162,34 @@ TEST(TrialReproduction, AugmentedCaneTable3_3PutsThePaperBesideOursWithAVerdict)
   EXPECT_THROW(run_augmented_cane_table3_3(matrix, request, ReproductionEnvironment{}), UsageError);
 }
 
+TEST(TrialReproduction, SmartCaneTable2ComparesTheThreeMethodsPairwise) {
+  ScratchDir dir("trial_repro_table2");
+  ReproductionRequest request;
+  request.out = dir / "out";
+  request.seeds = 2;
+  request.jobs = 2;
+  const fs::path matrix = fs::path(NAVAID_SOURCE_DIR) / "experiments" / "reproductions" / "smart-cane-table2.yaml";
+  run_smart_cane_table2(matrix, request, ReproductionEnvironment{});
+  const std::string table = read_text(dir / "out" / "table2.md");
+  EXPECT_NE(table.find("simulated users, not human results"), std::string::npos);
+  EXPECT_NE(table.find("10.28 ± 1.48"), std::string::npos);  // the paper's WPG duration
+  EXPECT_NE(table.find("p A* vs WPG"), std::string::npos);
+  for (const char* study : {"two-point-touch", "astar", "wpg"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "out" / study / "trials.csv")) << study;
+  // The A* condition is the smart-cane device with its planner swapped (the study records both).
+  const std::string astar = read_text(dir / "out" / "astar" / "summary.json");
+  EXPECT_NE(astar.find("smart-cane"), std::string::npos);
+  EXPECT_NE(astar.find("planning.smart_cane.planner=astar"), std::string::npos);
+  const std::string verdict = read_text(dir / "out" / "verdict.md");
+  EXPECT_TRUE(verdict.find("**Agrees**") != std::string::npos || verdict.find("**Differs**") != std::string::npos);
+  EXPECT_NE(verdict.find("of 6 comparisons"), std::string::npos);
+  EXPECT_EQ(read_text(dir / "out" / "table2.csv").find("measure,paper_two-point-touch_mean"), 0u);
+  // A matrix with the wrong number of conditions is refused with the key named.
+  const fs::path bad = dir / "bad.yaml";
+  std::ofstream(bad) << "scenario: corridor\nuser: typical\nseeds: 2\nconditions:\n  - {key: a, label: A, device: none}\n";
+  EXPECT_NE(navaid::testing::error_message<ConfigError>([&] { run_smart_cane_table2(bad, request, ReproductionEnvironment{}); })
+                .find("conditions"),
+            std::string::npos);
+}
+
 }  // namespace

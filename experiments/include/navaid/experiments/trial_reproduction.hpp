@@ -8,10 +8,19 @@
 
 namespace navaid::experiments {
 
+/// The conditions of each table (key, label, device, overrides) come from its matrix file
+/// (experiments/reproductions/*.yaml); the paper's numbers are in the code beside the measures.
+///
 /// BYU Table 3.3: FICF vs CACF on the obstacle course (time, cane contacts, body contacts), Welch's
 /// t test per measure as the thesis's. Writes table3.3.md, table3.3.csv, verdict.md and a trial
 /// study folder per cost function.
 void run_augmented_cane_table3_3(const std::filesystem::path& matrix, const ReproductionRequest& request,
                                  const ReproductionEnvironment& env);
+
+/// Smart Cane Table II: two-point touch (the white cane alone) vs A* vs WPG guidance in the
+/// corridor (duration, contacts), Welch's t test per pair against the paper's ANOVA/Tukey findings.
+/// Writes table2.md, table2.csv, verdict.md and a trial study folder per condition.
+void run_smart_cane_table2(const std::filesystem::path& matrix, const ReproductionRequest& request,
+                           const ReproductionEnvironment& env);
 
 }  // namespace navaid::experiments

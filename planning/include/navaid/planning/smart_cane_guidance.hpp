@@ -7,8 +7,13 @@
 // (GuidanceCommand::steering_rad). The uncertainty rules are those of the chain: while the
 // estimate is unsure, or the way is blocked, there is no heading and the controller is reset (no
 // pull toward a direction nobody knows, and no integral carried over a stop).
+//
+// planning.smart_cane.planner = astar swaps the walking-path generator for the paper's A*
+// baseline (Table II: grid A* on the cost map, no body model; same chain, look-ahead and PI).
 #include <memory>
+#include <string>
 
+#include "navaid/planning/grid_astar.hpp"
 #include "navaid/planning/path_guidance.hpp"
 #include "navaid/planning/pi_heading_controller.hpp"
 #include "navaid/planning/wpg_planner.hpp"
@@ -19,9 +24,12 @@ struct SmartCaneGuidanceConfig {
   PathGuidanceConfig guidance;  ///< replan_period_s = 0.1 (10 Hz) by default here
   WpgConfig wpg;                ///< horizon_m 10 (the sensing range), traversal_weight 2, escape_distance_m 1 here
   PiHeadingConfig pi;
+  std::string planner = "wpg";  ///< wpg (the paper's method) or astar (its Table II baseline)
+  GridAStarConfig astar;        ///< the baseline's planning.grid.* / planning.search.* keys
 };
 
-/// Keys planning.guidance.*, planning.follow.*, planning.wpg.*, planning.pi.*, with the two
+/// Keys planning.smart_cane.planner (wpg | astar), planning.guidance.*, planning.follow.*,
+/// planning.wpg.*, planning.grid.*, planning.pi.*, with the
 /// defaults above (planning.guidance.replan_period_s 0.1, planning.wpg.horizon_m 10,
 /// planning.wpg.traversal_weight 2: the cane camera leaves the walls beside the user unseen;
 /// planning.wpg.escape_distance_m 1: a user who veered against a wall is led off it, not stopped).
@@ -36,9 +44,11 @@ class SmartCaneGuidance {
                          const Subgoal& subgoal);
 
   const PathGuidance& chain() const { return chain_; }
+  std::string_view planner() const { return planner_; }
   static SmartCaneGuidanceConfig default_config();
 
  private:
+  std::string planner_;
   PathGuidance chain_;
   PiHeadingController pi_;
 };
