@@ -39,18 +39,22 @@ std::vector<Landmark> generate_landmarks(const RayCaster& world, const WalkerTra
   const int n = static_cast<int>(std::floor(path.length() / config.landmark_spacing_m)) + 1;
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector2d xy = path.path_point(std::min(k * config.landmark_spacing_m, path.length()));
-    const Vec3 origin(xy.x(), xy.y(), ground + config.seed_height_m);
-    for (int r = 0; r < config.rays_per_seed_point; ++r) {
-      // Isotropic directions, flattened towards the horizon where cameras look.
-      Vec3 dir(normal(rng), normal(rng), 0.6 * normal(rng));
-      if (dir.norm() < 1e-9) continue;
-      dir.normalize();
-      const auto hit = world.cast(origin, dir, config.max_landmark_distance_m);
-      if (!hit) continue;
-      landmarks.push_back(Landmark{landmarks.size(), hit->point + 1e-6 * hit->normal});
-    }
+    seed_landmarks_from(world, Vec3(xy.x(), xy.y(), ground + config.seed_height_m), config, rng, normal, landmarks);
   }
   return landmarks;
+}
+
+void seed_landmarks_from(const RayCaster& world, const Vec3& origin, const FeatureSimConfig& config,
+                         std::mt19937_64& rng, std::normal_distribution<double>& normal, std::vector<Landmark>& landmarks) {
+  for (int r = 0; r < config.rays_per_seed_point; ++r) {
+    // Isotropic directions, flattened towards the horizon where cameras look.
+    Vec3 dir(normal(rng), normal(rng), 0.6 * normal(rng));
+    if (dir.norm() < 1e-9) continue;
+    dir.normalize();
+    const auto hit = world.cast(origin, dir, config.max_landmark_distance_m);
+    if (!hit) continue;
+    landmarks.push_back(Landmark{landmarks.size(), hit->point + 1e-6 * hit->normal});
+  }
 }
 
 FeatureObserver::FeatureObserver(const RayCaster& world, const CameraModel& camera, const std::vector<Landmark>& landmarks,

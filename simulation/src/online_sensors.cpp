@@ -1,5 +1,7 @@
 #include "navaid/simulation/online_sensors.hpp"
 
+#include <cmath>
+
 #include "navaid/simulation/render_cache.hpp"
 #include "navaid/simulation/rgbd_noise_model.hpp"
 #include "navaid/simulation/sensor_streams.hpp"
@@ -25,6 +27,7 @@ OnlineSensors::OnlineSensors(const Scenario& scenario, const SimulationConfig& c
       render_camera_(make_camera_model(render_calibration_, "sensor.camera")),
       renderer_(world_, *render_camera_),
       landmarks_(generate_landmarks(world_, nominal, config.features, scenario.seed)),
+      ground_z_m_(nominal.config().ground_z_m),
       observer_(world_, *camera_, landmarks_, config.features),
       feature_rng_(model_seed(config.seed, ModelStream::kFeatures)),
       imu_(config.imu, imu_options(config)),
@@ -33,6 +36,26 @@ OnlineSensors::OnlineSensors(const Scenario& scenario, const SimulationConfig& c
       magnetometer_(seeded(config.mag, model_seed(config.seed, ModelStream::kMag))),
       depth_unit_m_(cache_depth_unit_m(config.render.max_depth)) {
   config_.rgbd_noise.focal_px = render_calibration_.fx;  // disparity noise in the rendered image's pixels
+  // The cells the nominal path's seeding points lie in are seeded already.
+  const double step = config.features.landmark_spacing_m;
+  for (double s = 0; s <= nominal.length(); s += step) {
+    const Vec2 xy = nominal.path_point(s);
+    seeded_cells_.insert({static_cast<long>(std::floor(xy.x() / kSeedCellM)), static_cast<long>(std::floor(xy.y() / kSeedCellM))});
+  }
+}
+
+void OnlineSensors::seed_landmarks_around(const Vec2& xy) {
+  const long cx = static_cast<long>(std::floor(xy.x() / kSeedCellM)), cy = static_cast<long>(std::floor(xy.y() / kSeedCellM));
+  for (long dy = -1; dy <= 1; ++dy) {
+    for (long dx = -1; dx <= 1; ++dx) {
+      if (!seeded_cells_.insert({cx + dx, cy + dy}).second) continue;
+      // The cell's own seed: the same cell gets the same landmarks whichever way the person came.
+      std::mt19937_64 rng(scenario_->seed * 1000003ULL + static_cast<std::uint64_t>((cx + dx) * 73856093L ^ (cy + dy) * 19349663L));
+      std::normal_distribution<double> normal(0.0, 1.0);
+      const Vec3 origin((cx + dx + 0.5) * kSeedCellM, (cy + dy + 0.5) * kSeedCellM, ground_z_m_ + config_.features.seed_height_m);
+      seed_landmarks_from(world_, origin, config_.features, rng, normal, landmarks_);
+    }
+  }
 }
 
 OnlineSensors::~OnlineSensors() = default;
@@ -40,6 +63,7 @@ OnlineSensors::~OnlineSensors() = default;
 ImuSample OnlineSensors::imu(const KinematicState& body, Timestamp t) { return imu_.measure(body, kSimulationEpoch + t); }
 
 FeatureFrame OnlineSensors::features(const SE3& T_W_B, Timestamp t) {
+  seed_landmarks_around(T_W_B.t.head<2>());
   const SE3 T_W_C = T_W_B * config_.camera.T_B_C;
   const auto moving = moving_caster(*scenario_, ns_to_seconds(t), T_W_C.t);
   return observer_.observe(camera_stamp(config_, t), T_W_C, feature_rng_, moving ? &*moving : nullptr);

@@ -42,6 +42,12 @@ void validate(const FeatureSimConfig& config);
 std::vector<Landmark> generate_landmarks(const RayCaster& world, const WalkerTrajectory& path,
                                          const FeatureSimConfig& config, std::uint64_t seed);
 
+/// The rays of one seeding point: `rays_per_seed_point` directions (isotropic, flattened towards
+/// the horizon) from `origin`; each hit within max_landmark_distance_m becomes a landmark with the
+/// next id. generate_landmarks seeds along a path; closed-loop sensors also where the person goes.
+void seed_landmarks_from(const RayCaster& world, const Vec3& origin, const FeatureSimConfig& config,
+                         std::mt19937_64& rng, std::normal_distribution<double>& normal, std::vector<Landmark>& landmarks);
+
 class FeatureObserver {
  public:
   /// Depth is measured for landmarks within [depth_min_m, depth_max_m] of the camera calibration

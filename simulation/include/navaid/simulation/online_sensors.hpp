@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <set>
 #include <vector>
 
 #include "navaid/core/camera.hpp"
@@ -29,8 +30,11 @@ namespace navaid::simulation {
 
 class OnlineSensors {
  public:
-  /// `nominal`: the walk the landmarks are seeded along (the scenario's path); the person may
-  /// stray from it, and sees fewer landmarks where it does. `render_camera`: the camera RGB-D frames
+  /// `nominal`: the walk the landmarks are seeded along first (the scenario's path, exactly as
+  /// `navaid simulate` seeds them). Where the person strays from it, features() seeds more around
+  /// where they are (kSeedCellM cells, each seeded once, from a seed of the cell), so a walk off
+  /// the planned path keeps seeing features (before, the camera saw none after 50 m down route1's
+  /// first street, and the estimator was lost for want of landmarks, not by its own fault). `render_camera`: the camera RGB-D frames
   /// are rendered with (the same lens at a lower resolution, for speed), config.camera when unset;
   /// features are always observed with config.camera. Keeps a reference to `scenario`.
   OnlineSensors(const Scenario& scenario, const SimulationConfig& config, const WalkerTrajectory& nominal,
@@ -53,10 +57,13 @@ class OnlineSensors {
 
   const std::vector<Landmark>& landmarks() const { return landmarks_; }
   const ImuModel& imu_model() const { return imu_; }
+  /// Size of the cells landmarks are seeded per as the person goes [m].
+  static constexpr double kSeedCellM = 2.0;
   const SimulationConfig& config() const { return config_; }
   const CameraCalibration& render_camera() const { return render_calibration_; }
 
  private:
+  void seed_landmarks_around(const Vec2& xy);
   const Scenario* scenario_;
   SimulationConfig config_;
   RayCaster world_;
@@ -65,6 +72,8 @@ class OnlineSensors {
   std::unique_ptr<CameraModel> render_camera_;
   RgbdRenderer renderer_;
   std::vector<Landmark> landmarks_;
+  std::set<std::pair<long, long>> seeded_cells_;  // kSeedCellM cells with landmarks seeded
+  double ground_z_m_ = 0;
   FeatureObserver observer_;
   std::mt19937_64 feature_rng_;
   ImuModel imu_;
