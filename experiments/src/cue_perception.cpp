@@ -1,8 +1,10 @@
 #include "navaid/experiments/cue_perception.hpp"
 
 #include <cmath>
+#include <cstdlib>
 
 #include "navaid/interaction/belt_adapter.hpp"
+#include "navaid/interaction/cue.hpp"
 #include "navaid/interaction/rumble_adapter.hpp"
 
 namespace navaid::experiments {
@@ -52,12 +54,22 @@ std::optional<Instruction> perceive_cue(const interaction::CueEvent& ev, double 
     if (id == "stop") return Instruction{t_s, K::kStop, 0};
     if (id == "locating") return Instruction{t_s, K::kWait, 0};
     if (id == "arrived" || id == "target_reached") return Instruction{t_s, K::kArrived, 0};
+    if (id == "arrived_facing") {
+      // Heard as a clock position: the person turns to the middle of that hour.
+      const auto clock = ev.cue.message->args.find("clock");
+      const int hour = clock == ev.cue.message->args.end() ? 12 : std::atoi(clock->second.c_str());
+      return Instruction{t_s, K::kArrived, interaction::clock_bearing(hour)};
+    }
     return std::nullopt;
   }
   if (ev.outcome == CueOutcome::kSwitchedOff) return Instruction{t_s, K::kClear, 0};
-  // A refresh repeats what is already felt, except the wheel, whose pull is read continuously.
-  const bool fresh = ev.outcome == CueOutcome::kSent ||
-                     (ev.outcome == CueOutcome::kRefreshed && ev.pattern && ev.pattern->device == interaction::DeviceKind::kWheel);
+  // A refresh repeats what is already felt, except the wheel, whose pull is read continuously, and
+  // the belt's front vibrator, whose intermittent pulse means "walk forward" (§III-E) to a person
+  // who stopped meanwhile (a side vibrator's refresh would turn them twice).
+  const bool continuous = ev.pattern && (ev.pattern->device == interaction::DeviceKind::kWheel ||
+                                         (ev.pattern->device == interaction::DeviceKind::kBelt &&
+                                          ev.cue.kind == interaction::CueKind::kOnCourse));
+  const bool fresh = ev.outcome == CueOutcome::kSent || (ev.outcome == CueOutcome::kRefreshed && continuous);
   if (!fresh || !ev.pattern || !ev.cue.felt) return std::nullopt;
   return felt(*ev.pattern, ev.cue.kind, t_s);
 }

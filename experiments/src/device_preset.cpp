@@ -53,6 +53,7 @@ DeviceSpec read_device_spec(const Config& config) {
   s.map_every = static_cast<std::size_t>(config.get_int("device.map_every", 1, 0, 100));
   if (config.has("device.route.osm")) s.route_osm = config.get_string("device.route.osm");
   s.route_to = optional_pair(config, "device.route.to", {-180.0, 180.0});
+  s.route_face = optional_pair(config, "device.route.face", {-180.0, 180.0});
   s.goal_start_frame_m = optional_pair(config, "device.goal_start_frame_m", {-1000.0, 1000.0});
   return s;
 }

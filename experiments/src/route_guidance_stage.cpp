@@ -33,8 +33,9 @@ class RouteGuidanceStage final : public GuidanceStage {
       throw Error(c.recording_dir.string() + ": no geodetic origin; device " + c.spec.name +
                   " maps its route into the estimator's ENU frame at the recording's origin");
     std::filesystem::path osm = c.spec.route_osm;
-    std::optional<GeoPoint> from, to;
+    std::optional<GeoPoint> from, to, face;
     if (c.spec.route_to) to = GeoPoint{c.spec.route_to->first, c.spec.route_to->second};
+    if (c.spec.route_face) face = GeoPoint{c.spec.route_face->first, c.spec.route_face->second};
     if (osm.empty()) {
       // A simulated recording: its scenario's streets as OSM, and its path's ends.
       const auto scenario = recording_scenario(c.recording_dir);
@@ -44,6 +45,7 @@ class RouteGuidanceStage final : public GuidanceStage {
       osm = c.out / "route" / "map.osm";
       from = GeoPoint{e.truth.start_lat_deg, e.truth.start_lon_deg};
       if (!to) to = GeoPoint{e.truth.goal_lat_deg, e.truth.goal_lon_deg};
+      if (!face && !e.truth.landmark_name.empty()) face = GeoPoint{e.truth.landmark_lat_deg, e.truth.landmark_lon_deg};
     } else if (!c.recording.gps.empty()) {
       from = GeoPoint{c.recording.gps.front().latitude_deg, c.recording.gps.front().longitude_deg};
     }
@@ -58,6 +60,7 @@ class RouteGuidanceStage final : public GuidanceStage {
     std::vector<Vec2> points;
     for (const GeoPoint& p : route_.points) points.push_back(enu.to_enu(p));
     subroutes_ = planning::cut_sub_routes(points, sub_.subroute_m);
+    if (face) face_ENU_ = enu.to_enu(*face);
     if (subroutes_.empty()) throw Error("device " + c.spec.name + ": the route has no length");
   }
 
@@ -69,7 +72,8 @@ class RouteGuidanceStage final : public GuidanceStage {
     subgoal.from_route = true;  // without a registration PathGuidance withholds the direction
     if (e.T_ENU_W) {
       const Vec2 user_ENU = (*e.T_ENU_W * e.T_W_B.t).head<2>();
-      const planning::RouteSubgoal rs = planning::route_subgoal(subroutes_, user_ENU, sub_.window_m);
+      planning::RouteSubgoal rs = planning::route_subgoal(subroutes_, user_ENU, sub_.window_m);
+      if (rs.reaches_destination) rs.subgoal.face_W = face_ENU_;  // turned to face it on arrival
       subgoal = planning::subgoal_in_world(rs.subgoal, *e.T_ENU_W);
       last_subroute_ = rs.subroute;
       max_distance_to_route_m_ = std::max(max_distance_to_route_m_, rs.distance_to_route_m);
@@ -89,6 +93,7 @@ class RouteGuidanceStage final : public GuidanceStage {
     return {{"route_length_m", route_.length_m},
             {"route_points", route_.points.size()},
             {"subroutes", subroutes_.size()},
+            {"faces_landmark", face_ENU_.has_value()},
             {"last_subroute", last_subroute_},
             {"max_distance_to_route_m", max_distance_to_route_m_},
             {"planner", planner_name_},
@@ -106,6 +111,7 @@ class RouteGuidanceStage final : public GuidanceStage {
   planning::FootGraph graph_;
   planning::Route route_;
   std::vector<planning::SubRoute> subroutes_;
+  std::optional<Vec2> face_ENU_;  ///< the destination's landmark
   std::size_t last_subroute_ = 0;
   double max_distance_to_route_m_ = 0;
 };

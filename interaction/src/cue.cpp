@@ -1,5 +1,7 @@
 #include "navaid/interaction/cue.hpp"
 
+#include <cmath>
+
 #include "enum_names.hpp"
 
 namespace navaid::interaction {
@@ -31,6 +33,14 @@ std::string_view to_string(CueIntensity intensity) { return detail::name_of(kInt
 std::optional<CueIntensity> cue_intensity_from_string(std::string_view name) {
   return detail::value_of(kIntensityNames, name);
 }
+
+int clock_position(double bearing_rad) {
+  // Clockwise from ahead: a bearing to the right (negative) is a later hour.
+  const long hour = std::lround(-bearing_rad / (M_PI / 6.0)) % 12;
+  return static_cast<int>(hour <= 0 ? hour + 12 : hour);
+}
+
+double clock_bearing(int hour) { return std::remainder(-(hour % 12) * (M_PI / 6.0), 2.0 * M_PI); }
 
 int default_priority(CueKind kind) {
   switch (kind) {

@@ -164,6 +164,15 @@ std::vector<Cue> CueGenerator::guidance_cues(const planning::GuidanceCommand& co
     case GuidanceAction::kArrived: {
       heading_class_.reset();
       const bool target = command.reason == GuidanceReason::kTargetReached;
+      if (!target && command.heading_rad) {
+        // Where the destination's landmark lies, as a clock position (the user turns to face it).
+        Cue cue = make(t, CueKind::kArrive);
+        cue.direction_rad = command.heading_rad;
+        cue.message = SpokenMessage{MessageCategory::kRoute, "arrived_facing",
+                                    {{"clock", std::to_string(clock_position(*command.heading_rad))}}};
+        remember(std::move(cue));
+        break;
+      }
       remember(spoken(t, CueKind::kArrive, target ? MessageCategory::kAction : MessageCategory::kRoute,
                       target ? "target_reached" : "arrived"));
       break;

@@ -116,6 +116,11 @@ GuidanceCommand PathGuidance::update(const StateEstimate& estimate, const mappin
     cmd.reason = GuidanceReason::kPathFound;
     cmd.confidence = 1.0;
     cmd.detail = "within the arrival radius of the goal";
+    if (subgoal.face_W && (*subgoal.face_W - p).norm() > 1e-6) {
+      const Vec2 d = *subgoal.face_W - p;
+      cmd.heading_rad = wrap_angle(std::atan2(d.y(), d.x()) - yaw);
+      cmd.detail += fmt::format("; the landmark at {:.0f} deg", rad_to_deg(*cmd.heading_rad));
+    }
     return cmd;
   }
   if (needs_replan(estimate.t, p, cost, subgoal)) {

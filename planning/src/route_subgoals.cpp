@@ -154,6 +154,7 @@ Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, double yaw, const Vec2& t) 
   const Eigen::Rotation2Dd inverse(-yaw);
   Subgoal w = subgoal_ENU;
   if (subgoal_ENU.goal_W) w.goal_W = inverse * (*subgoal_ENU.goal_W - t);
+  if (subgoal_ENU.face_W) w.face_W = inverse * (*subgoal_ENU.face_W - t);
   if (subgoal_ENU.direction_rad) w.direction_rad = std::remainder(*subgoal_ENU.direction_rad - yaw, 2 * 3.14159265358979323846);
   return w;
 }

@@ -1,6 +1,6 @@
 // What a simulated user feels and hears: the belt's vibrator as a direction, the wheel's pull,
-// the rumble's sides, stop and arrival, the spoken "locating"; refreshes tell nothing new except
-// the wheel's continuous pull.
+// the rumble's sides, stop and arrival (with where the destination lies), the spoken "locating";
+// refreshes tell nothing new except the wheel's continuous pull and the belt's forward pulse.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,6 +50,11 @@ TEST(CuePerception, TheBeltsFiveVibratorsAreFiveDirections) {
   CueEvent refresh = sent(belt, cue(CueKind::kTurn, 1.2));
   refresh.outcome = CueOutcome::kRefreshed;
   EXPECT_FALSE(perceive_cue(refresh, 0));  // the same pattern again
+  // The front vibrator's pulse goes on: "walk forward", to a person who stopped meanwhile too.
+  CueEvent pulse = sent(belt, cue(CueKind::kOnCourse, 0.0));
+  pulse.outcome = CueOutcome::kRefreshed;
+  ASSERT_TRUE(perceive_cue(pulse, 0));
+  EXPECT_EQ(perceive_cue(pulse, 0)->kind, K::kKeepGoing);
   CueEvent off;
   off.outcome = CueOutcome::kSwitchedOff;
   EXPECT_EQ(perceive_cue(off, 0)->kind, K::kClear);
@@ -86,6 +91,14 @@ TEST(CuePerception, WordsThatChangeWhatThePersonDoes) {
   EXPECT_EQ(perceive_cue(spoken, 1)->kind, K::kWait);
   spoken.cue.message->id = "arrived";
   EXPECT_EQ(perceive_cue(spoken, 1)->kind, K::kArrived);
+  // Where the destination lies, heard as a clock position: the middle of the hour.
+  spoken.cue.message = interaction::SpokenMessage{interaction::MessageCategory::kRoute, "arrived_facing", {{"clock", "9"}}};
+  const auto facing = perceive_cue(spoken, 1);
+  ASSERT_TRUE(facing);
+  EXPECT_EQ(facing->kind, K::kArrived);
+  EXPECT_NEAR(facing->value, M_PI / 2, 1e-12);
+  spoken.cue.message->args["clock"] = "4";
+  EXPECT_NEAR(perceive_cue(spoken, 1)->value, -2 * M_PI / 3, 1e-12);
   spoken.cue.message->id = "network_lost";
   EXPECT_FALSE(perceive_cue(spoken, 1));
 }

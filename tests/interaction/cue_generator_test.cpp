@@ -8,6 +8,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/message_templates.hpp"
 #include "navaid/planning/angles.hpp"
 
 namespace navaid::interaction {
@@ -163,6 +164,25 @@ TEST(CueGenerator, StopArriveAndTargetReached) {
   const std::vector<Cue> reached =
       g.on_guidance(command(2.0, GuidanceAction::kArrived, GuidanceReason::kTargetReached));
   EXPECT_EQ(said(reached), std::vector<std::string>{"target_reached"});
+  // With the landmark to face: its clock position ("at 9 o'clock" = left), and the direction.
+  GuidanceCommand facing = command(3.0, GuidanceAction::kArrived, GuidanceReason::kPathFound);
+  facing.heading_rad = deg_to_rad(80.0);
+  const std::vector<Cue> turn = g.on_guidance(facing);
+  ASSERT_EQ(said(turn), std::vector<std::string>{"arrived_facing"});
+  EXPECT_EQ(turn[0].message->args.at("clock"), "9");
+  EXPECT_EQ(turn[0].kind, CueKind::kArrive);
+  EXPECT_NEAR(*turn[0].direction_rad, deg_to_rad(80.0), 1e-12);
+  EXPECT_EQ(render_message(*turn[0].message, "en"), "You have arrived. The destination is at 9 o'clock.");
+}
+
+TEST(CueGenerator, ClockPositionsAreThirtyDegreesClockwiseFromAhead) {
+  for (const auto& [deg, hour] : std::vector<std::pair<double, int>>{
+           {0, 12}, {14, 12}, {-14, 12}, {16, 11}, {-16, 1}, {90, 9}, {-90, 3}, {180, 6}, {-180, 6}, {-150, 5}, {120, 8}})
+    EXPECT_EQ(clock_position(deg_to_rad(deg)), hour) << deg;
+  for (int hour = 1; hour <= 12; ++hour) EXPECT_EQ(clock_position(clock_bearing(hour)), hour);
+  EXPECT_NEAR(clock_bearing(9), deg_to_rad(90), 1e-12);
+  EXPECT_NEAR(clock_bearing(3), deg_to_rad(-90), 1e-12);
+  EXPECT_NEAR(clock_bearing(12), 0.0, 1e-12);
 }
 
 TEST(CueGenerator, HandDirectionsAndRumbleStates) {

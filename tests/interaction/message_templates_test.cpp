@@ -54,7 +54,7 @@ TEST(MessageTemplates, EveryTemplateHasBothLanguagesAndDistinctTexts) {
       if (a.back() == '?') continue;
       // A value every argument kind accepts.
       args[a] = a == "side" ? "left" : a == "direction" ? "up" : a == "turn" ? "left" : a == "mode" ? "vio" : a == "way" ? "stop"
-              : a == "distance_m" ? "10" : "north gate";
+              : a == "distance_m" || a == "clock" ? "10" : "north gate";
     }
     const std::string en = render_message(msg(std::string(info.id), args), "en");
     const std::string de = render_message(msg(std::string(info.id), args), "de");
@@ -145,6 +145,16 @@ TEST(MessageTemplates, EveryGeneratedMessageRenders) {
     o.rumble = r;
     add(heard.on_guidance(o));
   }
+  {
+    // Arrived, with the destination's landmark to face.
+    t += 1.0;
+    planning::GuidanceCommand a;
+    a.t = seconds_to_ns(t);
+    a.action = planning::GuidanceAction::kArrived;
+    a.confidence = 1.0;
+    a.heading_rad = planning::deg_to_rad(85.0);
+    add(heard.on_guidance(a));
+  }
   std::set<std::string> seen;
   for (const Cue& cue : cues) {
     if (!cue.message) continue;
@@ -155,7 +165,7 @@ TEST(MessageTemplates, EveryGeneratedMessageRenders) {
   }
   for (const char* id : {"initialized", "mode_changed", "network_lost", "network_restored", "link_lost",
                          "link_restored", "camera_fault", "route", "destination_set", "not_understood",
-                         "prepare_turn", "move_hand", "locating", "stop", "arrived", "guidance_stopped", "bear", "obstacle", "route_crossing", "route_steps"}) {
+                         "prepare_turn", "move_hand", "locating", "stop", "arrived", "guidance_stopped", "bear", "obstacle", "route_crossing", "route_steps", "arrived_facing"}) {
     EXPECT_TRUE(seen.count(id)) << id << " was never generated";
   }
 }

@@ -40,6 +40,23 @@ TEST(PathGuidance, HeadingIsRelativeToTheUser) {
   EXPECT_EQ(g.update(planar_estimate({3.8, 0.05}, 0.0, 0.01, 0.001), m, nullptr, goal).action, GuidanceAction::kArrived);
 }
 
+TEST(PathGuidance, OnArrivalTheCommandSaysWhereTheLandmarkToFaceLies) {
+  const CostMap m = open_map();
+  PathGuidance g = guidance();
+  Subgoal goal;
+  goal.goal_W = Vec2(4.0, 0.0);
+  goal.face_W = Vec2(4.0, 3.0);  // north of the destination
+  // Arriving eastward: the landmark is on the left.
+  const GuidanceCommand c = g.update(planar_estimate({3.8, 0.0}, 0.0, 0.01, 0.001), m, nullptr, goal);
+  ASSERT_EQ(c.action, GuidanceAction::kArrived);
+  ASSERT_TRUE(c.heading_rad);
+  EXPECT_NEAR(*c.heading_rad, std::atan2(3.0, 0.2), 1e-9);
+  // Facing west, it is on the right; no landmark, no direction.
+  EXPECT_NEAR(*g.update(planar_estimate({4.0, 0.2}, kPi, 0.01, 0.001), m, nullptr, goal).heading_rad, -kPi / 2, 1e-9);
+  goal.face_W.reset();
+  EXPECT_FALSE(g.update(planar_estimate({4.0, 0.2}, kPi, 0.01, 0.001), m, nullptr, goal).heading_rad);
+}
+
 TEST(PathGuidance, LocatingWithholdsTheDirection) {
   const CostMap m = open_map();
   PathGuidance g = guidance();

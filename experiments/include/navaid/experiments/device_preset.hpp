@@ -37,6 +37,9 @@ struct DeviceSpec {
   /// destination (lat, lon; empty: the end of the scenario's path).
   std::filesystem::path route_osm;
   std::optional<std::pair<double, double>> route_to;
+  /// kRoute: the landmark the user should face on arrival (lat, lon; empty: the simulated
+  /// scenario's goal landmark, none on a real map).
+  std::optional<std::pair<double, double>> route_face;
   /// kWalkingPath: the goal in the start pose's frame (forward, left) [m]; empty: the end of the
   /// simulated scenario's path.
   std::optional<std::pair<double, double>> goal_start_frame_m;

@@ -32,6 +32,12 @@ enum class CueIntensity : std::uint8_t { kLow, kHigh };
 std::string_view to_string(CueIntensity intensity);
 std::optional<CueIntensity> cue_intensity_from_string(std::string_view name);
 
+/// A bearing (radians, positive left, 0 ahead) as the clock position a traveller is told ("at 9
+/// o'clock" = left): 1..12, 12 ahead, 30 degrees each. clock_bearing is its inverse (the middle of
+/// the hour's sector).
+int clock_position(double bearing_rad);
+double clock_bearing(int hour);
+
 /// Default priority of a kind: higher wins. stop 100 > obstacle 80 > arrive 60 > turn 50 >
 /// object-direction 45 > veer 40 > system 30 > on-course 20.
 int default_priority(CueKind kind);

@@ -26,6 +26,9 @@ struct Subgoal {
   std::optional<Vec2> goal_W;
   std::optional<double> direction_rad;  ///< heading in W
   bool from_route = false;
+  /// What the user should face on arrival (the destination's landmark, eLabrador §V-A): the
+  /// arrival command then carries its bearing (heading_rad, positive left).
+  std::optional<Vec2> face_W;
 };
 
 struct PathGuidanceConfig {
