@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <fstream>
+#include <random>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/estimator_config.hpp"
@@ -14,9 +15,11 @@
 #include "navaid/experiments/cue_perception.hpp"
 #include "navaid/experiments/device_preset.hpp"
 #include "navaid/experiments/device_run.hpp"
+#include "navaid/experiments/experimenter.hpp"
 #include "navaid/mapping/segmentation_link.hpp"
 #include "navaid/planning/path_guidance.hpp"
 #include "navaid/simulation/online_sensors.hpp"
+#include "navaid/simulation/osm_export.hpp"
 #include "navaid/simulation/person_motion.hpp"
 #include "navaid/simulation/simulation_config.hpp"
 
@@ -95,7 +98,6 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   simulation::UserModel user_model = simulation::read_user_model(config);
 
   // The trial's own keys.
-  const double goal_radius = config.get_double("trial.goal_radius_m", 0.6, {0.1, 5.0});
   const int render_width = static_cast<int>(config.get_int("trial.render_width", 160, 16, 4096));
   const double contact_rate = config.get_double("trial.contact_rate_hz", 20.0, {1.0, 1000.0});
   const double check_m = config.get_double("trial.guidance_check_m", 0.7, {0.05, 10.0});
@@ -132,9 +134,24 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   // Cane users find their own way to the goal; so does the augmented cane's user, toward the
   // music source (the cane only warns); a device with a path or route leads.
   const bool goal_known = !device || device->guidance == GuidanceKind::kObstacleRumble;
-  const bool needs_facing = device && device->guidance == GuidanceKind::kRoute;
-  const simulation::Vec2 last_leg = goal - scenario.path[scenario.path.size() - 2];
-  const double final_heading = std::atan2(last_leg.y(), last_leg.x());
+  // eLabrador's success (§V-E): arrived and facing the destination's landmark. A route trial ends
+  // where the person stops, trial.settle_s after they arrived (the turn to face it).
+  const bool needs_facing = config.get_bool("trial.face_landmark", device && device->guidance == GuidanceKind::kRoute);
+  std::optional<simulation::Vec2> landmark;
+  if (needs_facing) {
+    if (!simulation::has_streets(scenario.name))
+      throw ConfigError(config.origin("trial.face_landmark"), "trial.face_landmark",
+                        "scenario " + scenario.name + " has no destination landmark (route1 and route2 have)");
+    const simulation::StreetMap streets = simulation::scenario_streets(scenario);
+    landmark = streets.landmarks.at(streets.goal_landmark).xy;
+  }
+  // Arrived: within this of the path's end (a route's destination as the experimenter judges it).
+  const double goal_radius = config.get_double("trial.goal_radius_m", needs_facing ? 3.0 : 0.6, {0.1, 10.0});
+  const double settle_s = config.get_double("trial.settle_s", 3.0, {0.0, 60.0});
+  // A goal-known person's turn points as they learn them on the way (a phone's GPS navigation: the
+  // cane users of the eLabrador study followed Amap): each off by this sigma per axis.
+  const double turn_point_sigma = config.get_double("trial.turn_point_sigma_m", 0.0, {0.0, 50.0});
+  const ExperimenterConfig experimenter_config = read_experimenter_config(config, needs_facing);
 
   // What the camera renders for mapping: the same lens at a lower resolution (trial.render_width).
   CameraCalibration render_camera = sim.camera;
@@ -193,8 +210,15 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   // The long cane: swept by cane users and by the augmented cane's user (it is their cane); the
   // Smart Cane rolls its wheel instead. user.cane.enabled says otherwise.
   if (!config.has("user.cane.enabled")) user_model.cane.enabled = goal_known;
-  simulation::SimulatedUser user(user_model, goal_known, route_turns(scenario.path, route_turn_rad), turn_reach_m,
-                                 person_seed + 1);
+  std::vector<simulation::Vec2> way = route_turns(scenario.path, route_turn_rad);
+  if (turn_point_sigma > 0) {
+    std::mt19937_64 way_rng(person_seed + 2);
+    std::normal_distribution<double> n(0.0, turn_point_sigma);
+    for (simulation::Vec2& w : way) w += simulation::Vec2(n(way_rng), n(way_rng));
+  }
+  simulation::SimulatedUser user(user_model, goal_known, way, turn_reach_m, person_seed + 1);
+  if (needs_facing && goal_known) user.stop_at_goal();
+  Experimenter experimenter(experimenter_config, scenario.path);
   if (device && device->guidance == GuidanceKind::kRoute)
     user.walk_off(start_heading, config.get_double("trial.walk_off_speed_factor", 0.7, {0.1, 1.0}));
   simulation::ContactMonitor contacts(scenario.world, scenario.ground_z_m, user_model.body, user_model.cane);
@@ -232,6 +256,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   std::optional<double> walked_off;
   std::optional<StateEstimate> last_estimate;
   std::optional<simulation::CaneTouch> bump;
+  std::optional<double> arrived_at;
   const double dt = ns_to_seconds(imu_dt_ns);
   for (Timestamp t = begin;; t += imu_dt_ns) {
     const double t_s = ns_to_seconds(t);
@@ -268,6 +293,11 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     }
     if (t >= next_contact) {
       next_contact += contact_dt_ns;
+      if (t_s >= 0)
+        if (const auto heading = experimenter.watch(t_s, body.position(), body.speed(), user.arrived())) {
+          user.redirect(*heading, experimenter_config.ahead_m, body);
+          instructions << fmt::format("{:.3f},experimenter,{:.4f}\n", t_s, *heading);
+        }
       const simulation::World moving = simulation::moving_world(scenario.moving, t_s);
       for (const auto& c : contacts.update(t_s, body.position(), body.heading(), moving)) {
         r.contacts.push_back(c);
@@ -335,10 +365,17 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     }
 
     const double to_goal = (body.position() - goal).norm();
-    if (to_goal <= goal_radius || user.arrived()) {
-      // eLabrador's users must also face the landmark at the end: the way the route arrives.
-      r.success = to_goal <= goal_radius &&
-                  (!needs_facing || std::abs(std::remainder(body.heading() - final_heading, 2 * M_PI)) <= face_tolerance);
+    if (needs_facing) {
+      if (user.arrived() && !arrived_at) arrived_at = t_s;
+      if (arrived_at && t_s >= *arrived_at + settle_s) {
+        const simulation::Vec2 d = *landmark - body.position();
+        r.faced_landmark = std::abs(std::remainder(body.heading() - std::atan2(d.y(), d.x()), 2 * M_PI)) <= face_tolerance;
+        r.success = to_goal <= goal_radius && r.faced_landmark;
+        r.outcome = r.success ? "arrived" : to_goal <= goal_radius ? "not-facing" : "stopped-short";
+        break;
+      }
+    } else if (to_goal <= goal_radius || user.arrived()) {
+      r.success = to_goal <= goal_radius;
       r.outcome = r.success ? "arrived" : "stopped-short";
       break;
     }
@@ -360,6 +397,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   r.mean_speed_mps = walking_s > 0 ? r.path_length_m / walking_s : 0.0;
   r.user = user.counts();
   r.goal_distance_m = (body.position() - goal).norm();
+  r.experimenter_corrections = experimenter.corrections();
+  r.max_off_route_m = experimenter.max_off_route_m();
   r.wall_s = seconds_since(wall0);
 
   nlohmann::ordered_json j;
@@ -376,6 +415,9 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   j["nominal_path_m"] = nominal.length();
   j["mean_speed_mps"] = r.mean_speed_mps;
   j["goal_distance_m"] = r.goal_distance_m;
+  if (needs_facing) j["faced_landmark"] = r.faced_landmark;
+  j["experimenter_corrections"] = r.experimenter_corrections;
+  j["max_off_route_m"] = r.max_off_route_m;
   nlohmann::ordered_json parts = {{"legs", 0}, {"torso", 0}, {"head", 0}, {"cane", 0}};
   for (const auto& c : r.contacts) parts[std::string(to_string(c.part))] = parts[std::string(to_string(c.part))].get<int>() + 1;
   j["contacts"] = {{"body", r.body_contacts}, {"cane", r.cane_contacts}, {"by_part", parts}};
@@ -390,7 +432,13 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   j["time"] = {{"wall_s", r.wall_s}, {"person_and_contacts_s", person_s}, {"sensors_s", sensor_s},
                {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index},
                {"gps_fixes", gps_fixes}, {"mag_samples", mag_samples}};
-  if (device) j["device_run"] = device_summary;
+  if (device) {
+    const estimation::EstimatorStatistics& es = estimator->statistics();
+    j["estimator"] = {{"failures", es.failures}, {"last_failure", es.last_failure}, {"restarts", es.restarts},
+                      {"map_frame_resets", es.map_frame_resets}, {"gps_registrations", es.gps_registrations},
+                      {"covariance_failures", es.covariance_failures}};
+    j["device_run"] = device_summary;
+  }
   r.summary = j;
   std::ofstream(out / "summary.json") << j.dump(2) << "\n";
   return r;

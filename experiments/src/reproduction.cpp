@@ -118,6 +118,17 @@ std::vector<Reproduction> make_registry() {
       "smart-cane-table2.yaml: corridor, typical users, the white cane alone and the smart-cane preset with "
       "planning.smart_cane.planner astar and wpg, 10 seeds each through navaid trial; --quick: 3 seeds; --seeds N: N",
       "smart-cane-table2.yaml", run_smart_cane_table2));
+  list.push_back(entry(
+      "elabrador-fig7-8",
+      "eLabrador Figs. 7 and 8: white cane (W) vs eLabrador (S) vs both (S+W) on Route 1 and Route 2, simulated "
+      "users in closed loop",
+      "elabrador-wearable-outdoor-navigation.txt, §V-VI, Figs. 7 and 8",
+      "route1/fig7.md, route2/fig8.md (and .csv: contacts, success facing the landmark, the experimenter's "
+      "corrections, walking speed, beside what the paper's text gives; its stated orderings checked), verdict.md, "
+      "ROUTE/w, s, s-w (the trial studies)",
+      "elabrador-fig7-8.yaml: route1 and route2, typical users, 6 seeds per condition through navaid trial; --quick: "
+      "2 seeds; --seeds N: N",
+      "elabrador-fig7-8.yaml", run_elabrador_fig7_8));
   return list;
 }
 

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "navaid/core/errors.hpp"
@@ -19,12 +21,29 @@ namespace {
 /// One measure of a user-study table: how we read it off a trial, and the paper's mean and SD per
 /// condition (in the matrix's condition order) with, per pair of conditions (0-1, 0-2, 1-2, ...),
 /// whether the paper found the difference significant.
+/// A paper's value: mean and SD where it prints them; NaN where it does not (a figure we cannot
+/// read numbers off, an SD it does not give).
+struct PaperValue {
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  double sd = std::numeric_limits<double>::quiet_NaN();
+};
+constexpr PaperValue kNotGiven{};
+
 struct TrialMeasure {
   const char* key;
   const char* label;
   double (*ours)(const TrialResult&);
-  std::vector<std::pair<double, double>> paper;  ///< mean, SD per condition
-  std::vector<bool> paper_significant;           ///< per pair
+  std::vector<PaperValue> paper;     ///< per condition
+  std::vector<bool> paper_significant;  ///< per pair; empty: the paper tests nothing (see claims)
+};
+
+/// What a paper's text says of two conditions' means: condition `a`'s is lower (`a_lower`) or
+/// higher than `b`'s.
+struct PaperClaim {
+  const char* measure;  ///< TrialMeasure::key
+  std::size_t a, b;
+  bool a_lower;
+  const char* quote;    ///< the paper's words
 };
 
 /// A user-study table reproduced with simulated users: the conditions come from the matrix file
@@ -35,6 +54,9 @@ struct TrialTableSpec {
   std::string title;       ///< the table's heading
   std::string paper_setup; ///< who the paper's participants were
   std::vector<TrialMeasure> measures;
+  /// When the paper states orderings in words instead of tests (eLabrador): the verdict counts how
+  /// many hold here.
+  std::vector<PaperClaim> claims;
   std::string finding;     ///< the paper's finding, for the verdict
   std::string footnote;    ///< how our numbers differ in kind
 };
@@ -70,12 +92,27 @@ std::vector<Condition> read_conditions(const YAML::Node& m, const fs::path& matr
   return out;
 }
 
-void run_trial_table(const TrialTableSpec& spec, const fs::path& matrix, const ReproductionRequest& request,
-                     const ReproductionEnvironment& env) {
+std::string paper_cell(const PaperValue& v) {
+  if (std::isnan(v.mean)) return "–";
+  return std::isnan(v.sd) ? fmt::format("{:.2f}", v.mean) : fmt::format("{:.2f} ± {:.2f}", v.mean, v.sd);
+}
+
+/// What run_trial_table concluded, for a reproduction of several tables.
+struct TableVerdict {
+  bool agrees = false;
+  std::string text;  ///< the verdict's sentences
+};
+
+/// Runs the table's conditions on `scenario` (empty: the matrix's) and writes its files into
+/// request.out; `verdict_file` false leaves verdict.md to the caller.
+TableVerdict run_trial_table(const TrialTableSpec& spec, const fs::path& matrix, const ReproductionRequest& request,
+                             const ReproductionEnvironment& env, const std::string& scenario = {},
+                             bool verdict_file = true) {
   if (!fs::is_regular_file(matrix)) throw IoError(matrix.string(), "no such reproduction matrix");
   const YAML::Node m = YAML::LoadFile(matrix.string());
   fs::create_directories(request.out);
-  const auto text = [&m, &matrix](const char* key) {
+  const auto text = [&m, &matrix, &scenario](const char* key) {
+    if (std::string(key) == "scenario" && !scenario.empty()) return scenario;
     if (!m[key]) throw ConfigError(matrix.string(), key, "is required");
     return m[key].as<std::string>();
   };
@@ -98,8 +135,12 @@ void run_trial_table(const TrialTableSpec& spec, const fs::path& matrix, const R
     s.last_seed = seeds;
     s.jobs = static_cast<unsigned>(std::max(1, request.jobs));
     s.overrides = c.overrides;
+    if (m["set"]) {
+      const auto common = m["set"].as<std::vector<std::string>>();
+      s.overrides.insert(s.overrides.begin(), common.begin(), common.end());
+    }
     s.quiet = true;
-    if (env.say) env.say(fmt::format("{}: {} trials with {}", c.label, seeds, c.device));
+    if (env.say) env.say(fmt::format("{}{}: {} trials with {}", scenario.empty() ? "" : scenario + ", ", c.label, seeds, c.device));
     std::vector<TrialResult> trials;
     summaries[i] = run_trial_study(s, request.out / c.key, &trials);
     for (const TrialResult& r : trials)
@@ -123,6 +164,7 @@ void run_trial_table(const TrialTableSpec& spec, const fs::path& matrix, const R
   for (const Condition& c : conditions) md << " paper " << c.label << " |";
   for (const Condition& c : conditions) md << " ours " << c.label << " |";
   for (const auto& [a, b] : pairs) md << " p " << conditions[a].label << " vs " << conditions[b].label << " |";
+  (void)text("scenario");
   md << "\n|---|";
   for (std::size_t k = 0; k < 2 * conditions.size() + pairs.size(); ++k) md << "---|";
   md << "\n";
@@ -132,9 +174,9 @@ void run_trial_table(const TrialTableSpec& spec, const fs::path& matrix, const R
   for (const TrialMeasure& p : spec.measures) {
     md << "| " << p.label << " |";
     csv << p.key;
-    for (const auto& [mean, sd] : p.paper) {
-      md << fmt::format(" {:.2f} ± {:.2f} |", mean, sd);
-      csv << fmt::format(",{},{}", mean, sd);
+    for (const PaperValue& v : p.paper) {
+      md << " " << paper_cell(v) << " |";
+      csv << (std::isnan(v.mean) ? std::string(",,") : fmt::format(",{},{}", v.mean, std::isnan(v.sd) ? std::string() : fmt::format("{}", v.sd)));
     }
     for (std::size_t i = 0; i < conditions.size(); ++i) {
       const MeanInterval mi = mean_interval(ours[i][p.key]);
@@ -148,35 +190,65 @@ void run_trial_table(const TrialTableSpec& spec, const fs::path& matrix, const R
       const WelchTest w = welch_t_test(x, y);
       md << fmt::format(" {:.3f} |", w.p);
       csv << fmt::format(",{:.6f},{:.6f}", w.t, w.p);
-      if ((w.p < 0.05) != p.paper_significant[k])
+      if (!p.paper_significant.empty() && (w.p < 0.05) != p.paper_significant[k])
         mismatched.push_back(fmt::format("{} ({} vs {}: {})", p.label, conditions[a].label, conditions[b].label,
                                          w.p < 0.05 ? "significant here, not in the paper" : "not significant here"));
+      if (std::isnan(p.paper[a].mean) || std::isnan(p.paper[b].mean)) continue;
       ++orders;
-      if ((p.paper[a].first < p.paper[b].first) == (mean_interval(x).mean < mean_interval(y).mean)) ++same_order;
+      if ((p.paper[a].mean < p.paper[b].mean) == (mean_interval(x).mean < mean_interval(y).mean)) ++same_order;
     }
     md << "\n";
     csv << "\n";
   }
-  md << "\n" << spec.footnote << "\n\nSuccess (reached the goal area):";
+  // The paper's orderings in words, each checked on our means.
+  std::size_t claims_held = 0;
+  std::vector<std::string> claims_failed;
+  if (!spec.claims.empty()) md << "\nThe paper's statements, on our means:\n\n";
+  for (const PaperClaim& c : spec.claims) {
+    const double ma = mean_interval(ours[c.a][c.measure]).mean, mb = mean_interval(ours[c.b][c.measure]).mean;
+    const bool held = c.a_lower ? ma < mb : ma > mb;
+    claims_held += held ? 1 : 0;
+    const std::string what = fmt::format("{} {} {} {} ({:.2f} vs {:.2f})", c.measure, conditions[c.a].label,
+                                         c.a_lower ? "<" : ">", conditions[c.b].label, ma, mb);
+    if (!held) claims_failed.push_back(what);
+    md << fmt::format("- {} \"{}\": {}\n", held ? "holds" : "**does not hold**", c.quote, what);
+  }
+  md << "\n" << spec.footnote << "\n\nSuccess (" << (spec.claims.empty() ? "reached the goal area" : "as the trial defines it") << "):";
   for (std::size_t i = 0; i < conditions.size(); ++i)
     md << fmt::format(" {} {:.0f} %{}", conditions[i].label, 100 * summaries[i]["success"]["rate"].get<double>(),
                       i + 1 < conditions.size() ? "," : ".\n");
 
-  std::ofstream v(request.out / "verdict.md");
-  v << "# Verdict: " << spec.name << " (simulated users, not human results)\n\n" << spec.finding << "\n\n";
-  if (mismatched.empty())
-    v << fmt::format("**Agrees**: with {} simulated users per condition, every difference the paper calls significant "
-                     "is significant here (Welch p < 0.05) and every other one is not.",
-                     seeds);
-  else
-    v << fmt::format("**Differs**: with {} simulated users per condition, {}.", seeds, fmt::join(mismatched, "; "));
-  v << fmt::format(" The ordering of the means matches the paper's in {} of {} comparisons.\n", same_order, orders);
+  TableVerdict verdict;
+  if (!spec.claims.empty()) {
+    verdict.agrees = claims_failed.empty();
+    verdict.text = fmt::format("**{}**: with {} simulated users per condition, {} of {} of the paper's statements hold{}{}.",
+                               verdict.agrees ? "Agrees" : "Differs", seeds, claims_held, spec.claims.size(),
+                               claims_failed.empty() ? "" : "; not: ", fmt::join(claims_failed, "; "));
+  } else if (mismatched.empty()) {
+    verdict.agrees = true;
+    verdict.text = fmt::format("**Agrees**: with {} simulated users per condition, every difference the paper calls "
+                               "significant is significant here (Welch p < 0.05) and every other one is not.",
+                               seeds);
+  } else {
+    verdict.text = fmt::format("**Differs**: with {} simulated users per condition, {}.", seeds, fmt::join(mismatched, "; "));
+  }
+  if (orders > 0)
+    verdict.text += fmt::format(" The ordering of the means matches the paper's in {} of {} comparisons.", same_order, orders);
+  if (verdict_file) {
+    std::ofstream v(request.out / "verdict.md");
+    v << "# Verdict: " << spec.name << " (simulated users, not human results)\n\n" << spec.finding << "\n\n"
+      << verdict.text << "\n";
+  }
   if (env.say) env.say("wrote " + (request.out / (spec.file + ".md")).string());
+  return verdict;
 }
 
 double duration(const TrialResult& r) { return r.duration_s; }
 double cane_contacts(const TrialResult& r) { return static_cast<double>(r.cane_contacts); }
 double body_contacts(const TrialResult& r) { return static_cast<double>(r.body_contacts); }
+double success(const TrialResult& r) { return r.success ? 1.0 : 0.0; }
+double experimenter_corrections(const TrialResult& r) { return static_cast<double>(r.experimenter_corrections); }
+double walking_speed(const TrialResult& r) { return r.mean_speed_mps; }
 double all_contacts(const TrialResult& r) { return static_cast<double>(r.body_contacts + r.cane_contacts); }
 
 }  // namespace
@@ -226,6 +298,80 @@ void run_smart_cane_table2(const fs::path& matrix, const ReproductionRequest& re
       "counts with its time at the timeout, so the durations of unsuccessful conditions are bounded by it. Our "
       "devices sense with the cane's RGB-D camera (Smart Cane V1); the paper's study used V2's LiDAR.";
   run_trial_table(spec, matrix, request, env);
+}
+
+
+void run_elabrador_fig7_8(const fs::path& matrix, const ReproductionRequest& request,
+                          const ReproductionEnvironment& env) {
+  // Figs. 7 and 8 (ten participants, each route with W, S and S+W in that order): contacts with
+  // obstacles, success (arrived and facing the landmark), the experimenter's corrections, walking
+  // speed. The text gives Route 1's contacts (1.0 / 0.7 / 0.5), W's success (0 for all) and
+  // corrections (W 0.37, S 0); everything else only as bars and in words.
+  const auto spec_for = [](const std::string& route) {
+    TrialTableSpec spec;
+    spec.name = "elabrador-fig7-8";
+    spec.file = "fig" + std::string(route == "route1" ? "7" : "8");
+    spec.title = "eLabrador Fig. " + std::string(route == "route1" ? "7 (Route 1)" : "8 (Route 2)") +
+                 ": white cane (W) vs eLabrador (S) vs both (S+W)";
+    spec.paper_setup = "10 participants (7 visually impaired, 3 blindfolded), each condition once per route, W then S "
+                       "then S+W (§V-C/D)";
+    const bool r1 = route == "route1";
+    spec.measures = {
+        {"contacts", "contacts with obstacles", body_contacts,
+         {r1 ? PaperValue{1.0} : kNotGiven, r1 ? PaperValue{0.7} : kNotGiven, r1 ? PaperValue{0.5} : kNotGiven}, {}},
+        {"success", "success (arrived, facing the landmark)", success, {r1 ? PaperValue{0.0} : kNotGiven, kNotGiven, kNotGiven}, {}},
+        {"corrections", "corrections (experimenter)", experimenter_corrections,
+         {r1 ? PaperValue{0.37} : kNotGiven, r1 ? PaperValue{0.0} : kNotGiven, kNotGiven}, {}},
+        {"speed_mps", "walking speed [m/s]", walking_speed, {kNotGiven, kNotGiven, kNotGiven}, {}}};
+    if (r1) {
+      spec.claims = {
+          {"contacts", 1, 0, true, "guided by our eLabrador, the average number of collisions decreased to 0.7"},
+          {"contacts", 2, 1, true, "using both ... collisions were further reduced to an average of 0.5"},
+          {"success", 0, 1, true, "the participants with the white cane achieve no success ... participants using our system perform significantly better"},
+          {"success", 0, 2, true, "(the same, with both)"},
+          {"corrections", 1, 0, true, "with our eLabrador pass Route 1 without any correction, while ... white cane need 0.37"},
+          {"speed_mps", 1, 0, true, "additional cognitive load, resulting in a reduction in walking speed"}};
+    } else {
+      spec.claims = {
+          {"contacts", 1, 0, true, "our eLabrador significantly reduces the frequency of contact with obstacles (visually impaired participants)"},
+          {"corrections", 1, 0, true, "Compared to the white cane, our eLabrador requires fewer corrections"},
+          {"corrections", 2, 1, true, "when the participants use eLabrador and the white cane simultaneously, the correction decreases significantly"},
+          {"speed_mps", 1, 0, true, "a reduction in walking speed"}};
+    }
+    spec.finding =
+        "The paper finds that eLabrador reduces contacts with obstacles (further with the white cane), guides "
+        "participants to face the destination's landmark where the white cane and a phone's navigation never do, "
+        "needs fewer corrections than the white cane, and slows walking (cognitive load).";
+    spec.footnote =
+        "Contacts: body contacts with any obstacle (the cane's touches are its use, not collisions). Corrections: an "
+        "experimenter turns the person back toward the route when they are more than trial.correction.off_route_m "
+        "from it or stand trial.correction.stuck_s without having arrived (the paper's experimenter intervened on a "
+        "wrong way or a blocked path). Success: stopped within trial.goal_radius_m of the destination, facing its "
+        "landmark within trial.face_tolerance_deg. W follows a phone's turn-by-turn directions (turn points off by "
+        "trial.turn_point_sigma_m) with the two-point touch; the paper's numbers are from bar charts except those "
+        "its text gives (–: not in the text).";
+    return spec;
+  };
+  const YAML::Node m = YAML::LoadFile(matrix.string());
+  if (!m["routes"] || !m["routes"].IsSequence())
+    throw ConfigError(matrix.string(), "routes", "is required: the scenarios of Fig. 7 and Fig. 8 (route1, route2)");
+  std::vector<std::string> lines;
+  bool all_agree = true;
+  for (const YAML::Node& n : m["routes"]) {
+    const std::string route = n.as<std::string>();
+    if (route != "route1" && route != "route2")
+      throw ConfigError(matrix.string(), "routes", "'" + route + "' is not route1 or route2");
+    ReproductionRequest r = request;
+    r.out = request.out / route;
+    const TableVerdict v = run_trial_table(spec_for(route), matrix, r, env, route, false);
+    all_agree = all_agree && v.agrees;
+    lines.push_back(fmt::format("- {} ({}): {}", route == "route1" ? "Fig. 7, Route 1" : "Fig. 8, Route 2",
+                                (fs::path(route) / (route == "route1" ? "fig7.md" : "fig8.md")).string(), v.text));
+  }
+  std::ofstream v(request.out / "verdict.md");
+  v << "# Verdict: elabrador-fig7-8 (simulated users, not human results)\n\n" << spec_for("route1").finding << "\n\n**"
+    << (all_agree ? "Agrees" : "Differs") << "** overall.\n\n" << fmt::format("{}", fmt::join(lines, "\n")) << "\n";
+  if (env.say) env.say("wrote " + (request.out / "verdict.md").string());
 }
 
 }  // namespace navaid::experiments

@@ -119,8 +119,8 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
   std::ofstream csv(out / "trials.csv");
   if (!csv) throw IoError((out / "trials.csv").string(), "cannot write");
   csv << "seed,world_seed,success,outcome,duration_s,path_length_m,mean_speed_mps,body_contacts,cane_contacts,"
-         "head_contacts,torso_contacts,legs_contacts,into_obstacle,corrections,stops,cane_avoidances,wall_s,replay\n";
-  std::vector<double> duration, length, speed, body, cane, corrections, into, trial_wall, head;
+         "head_contacts,torso_contacts,legs_contacts,into_obstacle,corrections,stops,cane_avoidances,experimenter_corrections,wall_s,replay\n";
+  std::vector<double> duration, length, speed, body, cane, corrections, into, trial_wall, head, experimenter;
   std::size_t successes = 0;
   nlohmann::ordered_json into_list = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < n; ++i) {
@@ -129,11 +129,11 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
     std::size_t by_part[4] = {0, 0, 0, 0};
     for (const auto& c : r.contacts) ++by_part[static_cast<int>(c.part)];
     const std::string replay = replay_command(spec, seed, out / "replay" / fmt::format("seed-{}", seed));
-    csv << fmt::format("{},{},{},{},{:.3f},{:.3f},{:.4f},{},{},{},{},{},{},{},{},{},{:.3f},\"{}\"\n", seed,
+    csv << fmt::format("{},{},{},{},{:.3f},{:.3f},{:.4f},{},{},{},{},{},{},{},{},{},{},{:.3f},\"{}\"\n", seed,
                        r.summary["world_seed"].get<std::uint64_t>(), r.success ? 1 : 0, r.outcome, r.duration_s,
                        r.path_length_m, r.mean_speed_mps, r.body_contacts, r.cane_contacts, by_part[2], by_part[1],
                        by_part[0], r.into_obstacle.size(), r.user.corrections, r.user.stops, r.user.cane_avoidances,
-                       r.wall_s, replay);
+                       r.experimenter_corrections, r.wall_s, replay);
     successes += r.success ? 1 : 0;
     if (r.success) {
       duration.push_back(r.duration_s);
@@ -144,6 +144,7 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
     head.push_back(static_cast<double>(by_part[2]));
     cane.push_back(static_cast<double>(r.cane_contacts));
     corrections.push_back(static_cast<double>(r.user.corrections));
+    experimenter.push_back(static_cast<double>(r.experimenter_corrections));
     into.push_back(static_cast<double>(r.into_obstacle.size()));
     trial_wall.push_back(r.wall_s);
     for (const auto& g : r.into_obstacle)
@@ -165,6 +166,7 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
   j["head_contacts_per_trial"] = interval_json(head);
   j["cane_contacts_per_trial"] = interval_json(cane);
   j["corrections_per_trial"] = interval_json(corrections);
+  j["experimenter_corrections_per_trial"] = interval_json(experimenter);
   j["guidance_into_obstacle_per_trial"] = interval_json(into);
   j["duration_s_successful"] = interval_json(duration);
   j["speed_mps_successful"] = interval_json(speed);
@@ -182,7 +184,8 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
      << fmt::format("| body contacts per trial | {} |\n", md_interval(j["body_contacts_per_trial"], 2))
      << fmt::format("| head contacts per trial | {} |\n", md_interval(j["head_contacts_per_trial"], 2))
      << fmt::format("| cane contacts per trial | {} |\n", md_interval(j["cane_contacts_per_trial"], 2))
-     << fmt::format("| corrections per trial | {} |\n", md_interval(j["corrections_per_trial"], 2))
+     << fmt::format("| direction changes acted on per trial | {} |\n", md_interval(j["corrections_per_trial"], 2))
+     << fmt::format("| experimenter's corrections per trial | {} |\n", md_interval(j["experimenter_corrections_per_trial"], 2))
      << fmt::format("| guidance into an obstacle per trial | {} |\n", md_interval(j["guidance_into_obstacle_per_trial"], 2))
      << fmt::format("| time to goal [s] (successful) | {} |\n", md_interval(j["duration_s_successful"], 1))
      << fmt::format("| walking speed [m/s] (successful) | {} |\n", md_interval(j["speed_mps_successful"], 2))

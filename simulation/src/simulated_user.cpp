@@ -151,6 +151,15 @@ void SimulatedUser::perceive(const Instruction& i) {
 void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
   std::normal_distribution<double> turn_error(0.0, model_.turn_error_sigma_rad);
   using K = Instruction::Kind;
+  if (i.kind == K::kArrived) {
+    // Stop; told where the destination lies ("at 9 o'clock"), turn to face it (heard again: again).
+    mode_ = Mode::kArrived;
+    arrived_ = true;
+    if (i.value != 0.0) heading_ = wrap(body.heading() + i.value + turn_error(rng_));
+    else if (!facing_set_) heading_ = body.heading();
+    facing_set_ = facing_set_ || i.value != 0.0;
+    return;
+  }
   if (mode_ == Mode::kArrived) return;
   switch (i.kind) {
     case K::kGo: {
@@ -200,10 +209,7 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
       if (mode_ != Mode::kStanding) ++counts_.stops;
       mode_ = Mode::kStanding;
       break;
-    case K::kArrived:
-      mode_ = Mode::kArrived;
-      arrived_ = true;
-      break;
+    case K::kArrived: break;  // above
     case K::kClear:
       // A side rumble or a halt ended: walk on the way now faced.
       if (mode_ == Mode::kTurnToward || mode_ == Mode::kSearch) {
@@ -216,6 +222,22 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
   detour_heading_.reset();  // a fresh instruction supersedes a cane detour
   // A new direction from the device: the veer built up while walking the old one is gone.
   if (i.kind == K::kGo || i.kind == K::kSteer || i.kind == K::kTurnToward || i.kind == K::kHalt) new_direction_ = true;
+}
+
+void SimulatedUser::redirect(double heading_W, double distance_m, const PersonMotion& body) {
+  if (mode_ == Mode::kArrived) return;
+  started_ = true;
+  pause_until_.reset();
+  speed_factor_ = 1.0;
+  new_direction_ = true;
+  mode_ = Mode::kWalkHeading;
+  heading_ = wrap(heading_W);
+  if (goal_known_) {
+    detour_heading_ = heading_;
+    detour_end_m_ = body.distance_walked() + distance_m;
+  } else {
+    detour_heading_.reset();
+  }
 }
 
 namespace {
@@ -243,6 +265,15 @@ MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const 
     heading_ = std::atan2(d.y(), d.x());
     mode_ = Mode::kWalkHeading;
     started_ = true;
+  }
+  if (goal_known_ && stop_at_goal_ && mode_ != Mode::kArrived && next_way_ + 1 == way_.size() &&
+      (body.position() - goal_W_).norm() <= reach_m_) {
+    // At the goal as they know it: they stop there, facing the way they came in.
+    mode_ = Mode::kArrived;
+    arrived_ = true;
+    heading_ = body.heading();
+    detour_heading_.reset();
+    pause_until_.reset();
   }
   if (goal_known_ && mode_ == Mode::kWalkHeading && !detour_heading_) {
     const Vec2 d = aim(body.position()) - body.position();
@@ -279,9 +310,12 @@ MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const 
 
   switch (mode_) {
     case Mode::kStanding:
-    case Mode::kArrived:
       c.speed_mps = 0;
       c.heading_rad = body.heading();
+      break;
+    case Mode::kArrived:
+      c.speed_mps = 0;
+      c.heading_rad = heading_;  // turning on the spot to face the destination, if told
       break;
     case Mode::kWalkHeading:
       c.speed_mps = speed_ * speed_factor_;

@@ -93,6 +93,30 @@ TEST(ClosedLoopTrial, ELabradorsUserWalksOffWhileLocatedWithGpsAndTheMagnetomete
   EXPECT_FALSE(a.success);  // 272 m of route in 15 s
 }
 
+TEST(ClosedLoopTrial, ARouteTrialEndsWhereThePersonStopsAndNeedsTheLandmarkFaced) {
+  ScratchDir dir("trial_route_facing");
+  // A cane user who knows the turns stops at the destination facing the way they came (east);
+  // the park's board stands north of it, so they arrive without facing it (the paper's W: 0).
+  const TrialResult w = run_trial({"route1", 0, 1, no_device({"trial.face_landmark=true"})}, dir / "w");
+  EXPECT_EQ(w.outcome, "not-facing");
+  EXPECT_FALSE(w.success);
+  EXPECT_FALSE(w.faced_landmark);
+  EXPECT_LE(w.goal_distance_m, 3.0);
+  EXPECT_FALSE(w.summary["faced_landmark"].get<bool>());
+  EXPECT_EQ(w.summary["experimenter_corrections"].get<std::size_t>(), w.experimenter_corrections);
+  // With the phone's turn points off by metres the walk differs, replayably.
+  const std::vector<std::string> gps = {"trial.face_landmark=true", "trial.turn_point_sigma_m=3"};
+  run_trial({"route1", 0, 1, no_device(gps)}, dir / "g1");
+  run_trial({"route1", 0, 1, no_device(gps)}, dir / "g2");
+  EXPECT_EQ(read_text(dir / "g1" / "track.csv"), read_text(dir / "g2" / "track.csv"));
+  EXPECT_NE(read_text(dir / "g1" / "track.csv"), read_text(dir / "w" / "track.csv"));
+  // Only the street scenarios have a destination landmark.
+  EXPECT_NE(navaid::testing::error_message<ConfigError>(
+                [&] { run_trial({"corridor", 0, 1, no_device({"trial.face_landmark=true"})}, dir / "c"); })
+                .find("no destination landmark"),
+            std::string::npos);
+}
+
 TEST(ClosedLoopTrial, SetUpsThatCannotRunAreRefusedByName) {
   ScratchDir dir("trial_bad");
   // The hand unit's user reaches for an object: not simulated yet.
@@ -189,6 +213,43 @@ TEST(TrialReproduction, SmartCaneTable2ComparesTheThreeMethodsPairwise) {
   std::ofstream(bad) << "scenario: corridor\nuser: typical\nseeds: 2\nconditions:\n  - {key: a, label: A, device: none}\n";
   EXPECT_NE(navaid::testing::error_message<ConfigError>([&] { run_smart_cane_table2(bad, request, ReproductionEnvironment{}); })
                 .find("conditions"),
+            std::string::npos);
+}
+
+TEST(TrialReproduction, ElabradorFiguresCheckThePapersStatementsPerRoute) {
+  ScratchDir dir("trial_repro_elabrador");
+  ReproductionRequest request;
+  request.out = dir / "out";
+  request.seeds = 2;
+  request.jobs = 2;
+  // The figures' runner on a fast stand-in matrix (every condition a cane user; the real matrix's
+  // eLabrador trials take minutes each and are measured in docs/reproductions.md).
+  const fs::path matrix = dir / "m.yaml";
+  std::ofstream(matrix) << "routes: [route2]\nuser: typical\nset: [trial.face_landmark=true]\nseeds: 2\nconditions:\n"
+                           "  - {key: w, label: W, device: none, set: [trial.turn_point_sigma_m=3]}\n"
+                           "  - {key: s, label: S, device: none}\n  - {key: s-w, label: S+W, device: none}\n";
+  run_elabrador_fig7_8(matrix, request, ReproductionEnvironment{});
+  const std::string fig = read_text(dir / "out" / "route2" / "fig8.md");
+  EXPECT_NE(fig.find("simulated users, not human results"), std::string::npos);
+  EXPECT_NE(fig.find("corrections (experimenter)"), std::string::npos);
+  EXPECT_NE(fig.find("The paper's statements, on our means"), std::string::npos);
+  for (const char* study : {"w", "s", "s-w"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "out" / "route2" / study / "trials.csv")) << study;
+  const std::string verdict = read_text(dir / "out" / "verdict.md");
+  EXPECT_NE(verdict.find("Fig. 8, Route 2"), std::string::npos);
+  EXPECT_NE(verdict.find("of 4 of the paper's statements hold"), std::string::npos);
+  // Route 1's text gives numbers: they are in its table beside ours.
+  std::ofstream(matrix) << "routes: [route1]\nuser: typical\nset: [trial.face_landmark=true]\nseeds: 2\nconditions:\n"
+                           "  - {key: w, label: W, device: none}\n  - {key: s, label: S, device: none}\n"
+                           "  - {key: s-w, label: S+W, device: none}\n";
+  run_elabrador_fig7_8(matrix, request, ReproductionEnvironment{});
+  const std::string fig7 = read_text(dir / "out" / "route1" / "fig7.md");
+  EXPECT_NE(fig7.find("| 1.00 | 0.70 | 0.50 |"), std::string::npos);
+  EXPECT_NE(fig7.find("| 0.37 | 0.00 | – |"), std::string::npos);
+  EXPECT_NE(read_text(dir / "out" / "verdict.md").find("of 6 of the paper's statements hold"), std::string::npos);
+  std::ofstream(matrix) << "routes: [route9]\nuser: typical\nseeds: 2\nconditions: []\n";
+  EXPECT_NE(navaid::testing::error_message<ConfigError>([&] { run_elabrador_fig7_8(matrix, request, ReproductionEnvironment{}); })
+                .find("routes"),
             std::string::npos);
 }
 

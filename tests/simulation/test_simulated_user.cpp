@@ -92,6 +92,46 @@ TEST(SimulatedUser, ACaneUserWalksTowardTheGoalAndStepsRoundWhatTheCaneTouches) 
   EXPECT_NEAR(body.heading(), std::atan2(10 - body.position().y(), -body.position().x()), 0.05);  // back toward the goal
 }
 
+TEST(SimulatedUser, ToldWhereTheDestinationLiesOnArrivalTheyTurnToFaceItAndStay) {
+  const UserModel m = exact_user();
+  SimulatedUser user(m, false, Vec2(100, 0), 5);
+  PersonMotion body(m.motion, Vec2::Zero(), 0.0, 5);
+  user.perceive({0.0, K::kGo, 0.0});
+  double t = run(user, body, 0.0, 3.0);
+  // "You have arrived. The destination is at 9 o'clock." heard with the belt's arrival pulse.
+  user.perceive({t, K::kArrived, M_PI / 2});
+  user.perceive({t, K::kArrived, 0.0});  // the felt pulse says no direction: the turn stands
+  t = run(user, body, t, 4.0);
+  EXPECT_TRUE(user.arrived());
+  EXPECT_EQ(body.speed(), 0.0);
+  EXPECT_NEAR(body.heading(), M_PI / 2, 0.01);
+  user.perceive({t, K::kGo, -M_PI / 2});  // nothing moves an arrived person
+  run(user, body, t, 3.0);
+  EXPECT_NEAR(body.heading(), M_PI / 2, 0.01);
+}
+
+TEST(SimulatedUser, TheExperimenterTurnsAPersonBackAndACaneUserStopsAtTheGoalTheyKnow) {
+  const UserModel m = exact_user();
+  // A guided person walks the way they were turned to until the device's next direction.
+  SimulatedUser guided(m, false, Vec2(100, 0), 6);
+  PersonMotion a(m.motion, Vec2::Zero(), 0.0, 6);
+  guided.redirect(-M_PI / 2, 5.0, a);
+  run(guided, a, 0.0, 4.0);
+  EXPECT_NEAR(a.heading(), -M_PI / 2, 0.01);
+  EXPECT_GT(a.speed(), 0.5);
+  // A goal-known one walks it for the distance, then heads for their goal again; stopped there.
+  SimulatedUser known(m, true, std::vector<Vec2>{Vec2(6, 0)}, 0.8, 7);
+  known.stop_at_goal();
+  PersonMotion b(m.motion, Vec2::Zero(), 0.0, 7);
+  known.redirect(M_PI / 2, 1.0, b);
+  double t = run(known, b, 0.0, 2.0);
+  EXPECT_GT(b.position().y(), 0.5);  // went the experimenter's way first
+  run(known, b, t, 15.0);
+  EXPECT_TRUE(known.arrived());
+  EXPECT_LE((b.position() - Vec2(6, 0)).norm(), 0.8);
+  EXPECT_EQ(b.speed(), 0.0);
+}
+
 TEST(SimulatedUser, ComplianceDecidesHowManyDirectionsAreFollowed) {
   UserModel m = exact_user();
   m.compliance = 0.5;

@@ -49,7 +49,7 @@ struct GuidanceIntoObstacle {
 
 struct TrialResult {
   bool success = false;
-  std::string outcome;            ///< "arrived" (goal area reached), "timeout"
+  std::string outcome;            ///< "arrived" (goal area reached), "stopped-short", "timeout"
   double duration_s = 0;          ///< from walking off to the end
   double path_length_m = 0;       ///< walked by the body
   double mean_speed_mps = 0;      ///< path length / time spent walking
@@ -58,6 +58,11 @@ struct TrialResult {
   simulation::UserCounts user;
   std::vector<GuidanceIntoObstacle> into_obstacle;
   double goal_distance_m = 0;     ///< at the end
+  /// Route trials (trial.face_landmark): whether the person faced the destination's landmark at
+  /// the end, and the experimenter's corrections (experimenter.hpp).
+  bool faced_landmark = false;
+  std::size_t experimenter_corrections = 0;
+  double max_off_route_m = 0;
   double wall_s = 0;
   nlohmann::ordered_json summary; ///< what summary.json holds
 };

@@ -23,4 +23,12 @@ void run_augmented_cane_table3_3(const std::filesystem::path& matrix, const Repr
 void run_smart_cane_table2(const std::filesystem::path& matrix, const ReproductionRequest& request,
                            const ReproductionEnvironment& env);
 
+/// eLabrador Figs. 7 and 8 (the "Tables III/IV"): route1 and route2 with the white cane
+/// and a phone's directions (W), eLabrador (S) and both (S+W), simulated users in closed loop:
+/// contacts, success (arrived and facing the landmark), the experimenter's corrections and walking
+/// speed beside what the paper's text gives, and a verdict from the orderings it states. Writes
+/// route1/fig7.md, route2/fig8.md (and .csv, and a trial study folder per condition) and verdict.md.
+void run_elabrador_fig7_8(const std::filesystem::path& matrix, const ReproductionRequest& request,
+                          const ReproductionEnvironment& env);
+
 }  // namespace navaid::experiments

@@ -56,7 +56,7 @@ struct Instruction {
     kHalt,       ///< both sides rumble / an obstacle with no open side: stop and search
     kStop,       ///< stop
     kWait,       ///< "locating": stop until directions come again
-    kArrived,    ///< the goal is reached
+    kArrived,    ///< the goal is reached; `value` [rad]: where the destination lies, 0 = not said
     kClear,      ///< the haptic pattern went off: whatever it said is over
   };
   double t_s = 0;
@@ -93,6 +93,16 @@ class SimulatedUser {
   /// does): eLabrador's users, placed at the start facing the route, walk the first street so that
   /// GPS and the walked track can be registered.
   void walk_off(double heading_rad, double speed_factor) { walk_off_ = std::make_pair(heading_rad, speed_factor); }
+
+  /// A goal-known person who stops at the goal as they know it (within the turn points' reach of
+  /// it) and says they have arrived, instead of walking on toward it: eLabrador's cane users, whose
+  /// trial ends where they stop.
+  void stop_at_goal() { stop_at_goal_ = true; }
+
+  /// The experimenter turns the person to `heading_W` and lets them walk on (a correction): a
+  /// guided person walks that way until the device's next direction; a goal-known one walks it for
+  /// `distance_m`, then heads for their goal again.
+  void redirect(double heading_W, double distance_m, const PersonMotion& body);
 
   /// An instruction the device gave at i.t_s; acted on after the reaction delay.
   void perceive(const Instruction& i);
@@ -132,6 +142,8 @@ class SimulatedUser {
   bool started_ = false, arrived_ = false;
   std::optional<std::pair<double, double>> walk_off_;  ///< heading, speed factor
   bool stopped_before_start_ = false;
+  bool stop_at_goal_ = false;
+  bool facing_set_ = false;  ///< told on arrival which way the destination lies
   // Avoiding what the cane touched: paused until, then walking the detour heading until the
   // distance walked passes detour_end.
   std::optional<double> pause_until_;
