@@ -1,5 +1,6 @@
 #include "navaid/experiments/experimenter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>

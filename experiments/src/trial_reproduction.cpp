@@ -164,7 +164,6 @@ TableVerdict run_trial_table(const TrialTableSpec& spec, const fs::path& matrix,
   for (const Condition& c : conditions) md << " paper " << c.label << " |";
   for (const Condition& c : conditions) md << " ours " << c.label << " |";
   for (const auto& [a, b] : pairs) md << " p " << conditions[a].label << " vs " << conditions[b].label << " |";
-  (void)text("scenario");
   md << "\n|---|";
   for (std::size_t k = 0; k < 2 * conditions.size() + pairs.size(); ++k) md << "---|";
   md << "\n";

@@ -225,9 +225,12 @@ TEST(TrialReproduction, ElabradorFiguresCheckThePapersStatementsPerRoute) {
   // The figures' runner on a fast stand-in matrix (every condition a cane user; the real matrix's
   // eLabrador trials take minutes each and are measured in docs/reproductions.md).
   const fs::path matrix = dir / "m.yaml";
-  std::ofstream(matrix) << "routes: [route2]\nuser: typical\nset: [trial.face_landmark=true]\nseeds: 2\nconditions:\n"
-                           "  - {key: w, label: W, device: none, set: [trial.turn_point_sigma_m=3]}\n"
-                           "  - {key: s, label: S, device: none}\n  - {key: s-w, label: S+W, device: none}\n";
+  const auto stand_in = [&matrix](const std::string& route, const std::string& w_set) {
+    std::ofstream(matrix) << "routes: [" << route << "]\nuser: typical\nset: [trial.face_landmark=true]\nseeds: 2\n"
+                          << "conditions:\n  - {key: w, label: W, device: none" << w_set << "}\n"
+                          << "  - {key: s, label: S, device: none}\n  - {key: s-w, label: S+W, device: none}\n";
+  };
+  stand_in("route2", ", set: [trial.turn_point_sigma_m=3]");
   run_elabrador_fig7_8(matrix, request, ReproductionEnvironment{});
   const std::string fig = read_text(dir / "out" / "route2" / "fig8.md");
   EXPECT_NE(fig.find("simulated users, not human results"), std::string::npos);
@@ -239,9 +242,7 @@ TEST(TrialReproduction, ElabradorFiguresCheckThePapersStatementsPerRoute) {
   EXPECT_NE(verdict.find("Fig. 8, Route 2"), std::string::npos);
   EXPECT_NE(verdict.find("of 4 of the paper's statements hold"), std::string::npos);
   // Route 1's text gives numbers: they are in its table beside ours.
-  std::ofstream(matrix) << "routes: [route1]\nuser: typical\nset: [trial.face_landmark=true]\nseeds: 2\nconditions:\n"
-                           "  - {key: w, label: W, device: none}\n  - {key: s, label: S, device: none}\n"
-                           "  - {key: s-w, label: S+W, device: none}\n";
+  stand_in("route1", "");
   run_elabrador_fig7_8(matrix, request, ReproductionEnvironment{});
   const std::string fig7 = read_text(dir / "out" / "route1" / "fig7.md");
   EXPECT_NE(fig7.find("| 1.00 | 0.70 | 0.50 |"), std::string::npos);
