@@ -572,6 +572,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   if (gaussian_solves > 0) --gaussian_solves;
   ++stats.solves;
   stats.solver_iterations += summary.iterations.size() > 0 ? summary.iterations.size() - 1 : 0;
+  if (summary.termination_type == ceres::NO_CONVERGENCE) ++stats.solves_at_iteration_cap;
   count.solver_failed = summary.termination_type == ceres::FAILURE;
   if (cfg.failure_detection) count_newest_inliers(residuals, count);
   if (cfg.residual_diagnostics) accumulate_residual_statistics(residuals);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/io/navaid_recording.hpp"
 #include "navaid/estimation/estimator_config.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
 #include "navaid/estimation/sliding_window_estimator.hpp"
@@ -16,6 +17,7 @@
 #include "navaid/experiments/device_preset.hpp"
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/experimenter.hpp"
+#include "navaid/mapping/pose_uncertainty.hpp"
 #include "navaid/mapping/segmentation_link.hpp"
 #include "navaid/planning/path_guidance.hpp"
 #include "navaid/simulation/online_sensors.hpp"
@@ -152,6 +154,12 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   // cane users of the eLabrador study followed Amap): each off by this sigma per axis.
   const double turn_point_sigma = config.get_double("trial.turn_point_sigma_m", 0.0, {0.0, 50.0});
   const ExperimenterConfig experimenter_config = read_experimenter_config(config, needs_facing);
+  // The device's sensor streams and the true states as a navaid recording (recording/), so that
+  // `navaid run` and `navaid eval` replay the estimator on exactly what it met in the trial.
+  const bool save_recording = config.get_bool("trial.save_recording", false);
+  if (save_recording && !with_device)
+    throw ConfigError(config.origin("trial.save_recording"), "trial.save_recording",
+                      "needs a device (--device): a trial without one has no sensors to record");
 
   // What the camera renders for mapping: the same lens at a lower resolution (trial.render_width).
   CameraCalibration render_camera = sim.camera;
@@ -225,8 +233,15 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   std::optional<simulation::OnlineSensors> sensors;
   if (device) sensors.emplace(scenario, sim, nominal, render_camera);
 
+  io::Recording saved;  // trial.save_recording
+  if (save_recording) {
+    saved.format = "navaid";
+    saved.origin = recording.origin;
+    saved.calibration = recording.calibration;
+    saved.calibration.cameras.front().rate_hz = camera_rate;  // the rate the features come at
+  }
   TrialResult r;
-  std::ofstream track = open_csv(out / "track.csv", "t_s,x,y,heading_deg,speed_mps,veer_deg,est_x,est_y,est_heading_deg,est_mode");
+  std::ofstream track = open_csv(out / "track.csv", "t_s,x,y,heading_deg,speed_mps,veer_deg,est_x,est_y,est_heading_deg,est_mode,est_sigma_xy_m");
   std::ofstream instructions = open_csv(out / "instructions.csv", "t_s,kind,value");
   std::ofstream contact_csv = open_csv(out / "contacts.csv", "t_s,part,semantic,moving,primitive,height_m,x,y");
   bool pointing_into_obstacle = false;
@@ -313,16 +328,22 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
                            body.heading() * 180.0 / M_PI, body.speed(), body.veer() * 180.0 / M_PI);
       // What the device believes: its newest estimate, in its own world frame.
       if (last_estimate)
-        track << fmt::format(",{:.4f},{:.4f},{:.3f},{}\n", last_estimate->T_W_B.t.x(), last_estimate->T_W_B.t.y(),
-                             planning::body_yaw(last_estimate->T_W_B) * 180.0 / M_PI, to_string(last_estimate->mode));
+        track << fmt::format(",{:.4f},{:.4f},{:.3f},{},{:.4f}\n", last_estimate->T_W_B.t.x(),
+                             last_estimate->T_W_B.t.y(), planning::body_yaw(last_estimate->T_W_B) * 180.0 / M_PI,
+                             to_string(last_estimate->mode), mapping::pose_uncertainty(*last_estimate).sigma_xy);
       else
-        track << ",,,,\n";
+        track << ",,,,,\n";
     }
     person_s += seconds_since(tp);
 
     if (device) {
       tp = Clock::now();
       const ImuSample imu = sensors->imu(state, t);
+      if (save_recording) {
+        saved.imu.push_back(imu);
+        saved.groundtruth.push_back({imu.t, state.T_W_B, state.v_W, sensors->imu_model().gyro_bias(),
+                                     sensors->imu_model().accel_bias()});
+      }
       std::vector<StateEstimate> estimates = estimator->process(imu);
       std::optional<RgbdFrame> frame;
       FeatureFrame features;
@@ -330,6 +351,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       if (camera_tick) {
         next_camera += camera_dt_ns;
         features = sensors->features(state.T_W_B, t);
+        if (save_recording) saved.features.push_back(features);
         frame = sensors->rgbd(state.T_W_B, t, frame_index++);
       }
       sensor_s += seconds_since(tp);
@@ -340,6 +362,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         next_gps += seconds_to_ns(1.0 / sim.gps.rate_hz);
         if (auto fix = sensors->gps(state.T_W_B, t)) {
           ++gps_fixes;
+          if (save_recording) saved.gps.push_back(*fix);
           auto more = estimator->process(SensorEvent{*fix});
           estimates.insert(estimates.end(), more.begin(), more.end());
         }
@@ -348,6 +371,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         next_mag += seconds_to_ns(1.0 / sim.mag_rate_hz);
         if (auto m = sensors->mag(state.T_W_B, t)) {
           ++mag_samples;
+          if (save_recording) saved.mag.push_back(*m);
           auto more = estimator->process(SensorEvent{*m});
           estimates.insert(estimates.end(), more.begin(), more.end());
         }
@@ -383,6 +407,10 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       r.outcome = "timeout";
       break;
     }
+  }
+  if (save_recording) {
+    saved.landmarks = sensors->landmarks();
+    io::write_navaid_recording(saved, out / "recording");
   }
   const double end_s = ns_to_seconds(next_track) - 0.1;
   nlohmann::ordered_json device_summary;

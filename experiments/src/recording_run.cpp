@@ -344,6 +344,7 @@ std::string run_recording(const RecordingRunOptions& a) {
   j["keyframes"] = st.keyframes;
   j["solves"] = st.solves;
   j["solver_iterations"] = st.solver_iterations;
+  j["solves_at_iteration_cap"] = st.solves_at_iteration_cap;
   j["marginalizations"] = st.marginalizations;
   j["marginalization_failures"] = st.marginalization_failures;
   j["covariance_failures"] = st.covariance_failures;

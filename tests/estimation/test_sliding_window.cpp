@@ -403,6 +403,17 @@ TEST(SlidingWindowEstimator, NonKeyframesSolvedAloneKeepTheAccuracyWithFewerIter
   RecordProperty("rmse_um_newest", static_cast<int>(std::lround(n.rmse_m * 1e6)));
 }
 
+TEST(SlidingWindowEstimator, SolvesCutShortByTheIterationCapAreCounted) {
+  // A cap of one iteration stops nearly every window solve before it converges; a generous cap
+  // lets them finish. The count is what tells a run that its cap is too low.
+  const auto& rec = noisy_walk();
+  const auto capped = testing::run_estimator(rec, {"estimator.solver.max_iterations=1"});
+  const auto free = testing::run_estimator(rec, {"estimator.solver.max_iterations=50"});
+  EXPECT_GT(capped.stats.solves_at_iteration_cap, capped.stats.solves / 2);
+  EXPECT_LE(capped.stats.solves_at_iteration_cap, capped.stats.solves);
+  EXPECT_LT(free.stats.solves_at_iteration_cap, free.stats.solves / 20);
+}
+
 TEST(EstimatorConfig, DefaultsFollowThePaper) {
   const EstimatorConfig c = read_estimator_config(Config::parse("{}"));
   EXPECT_EQ(c.window_size, 10);

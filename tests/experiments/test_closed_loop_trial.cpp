@@ -9,6 +9,8 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/closed_loop_trial.hpp"
 #include "navaid/experiments/device_preset.hpp"
+#include "navaid/experiments/recording_run.hpp"
+#include "navaid/io/navaid_recording.hpp"
 #include "navaid/experiments/trial_reproduction.hpp"
 #include "navaid/experiments/trial_study.hpp"
 #include "test_support.hpp"
@@ -114,6 +116,42 @@ TEST(ClosedLoopTrial, ARouteTrialEndsWhereThePersonStopsAndNeedsTheLandmarkFaced
   EXPECT_NE(navaid::testing::error_message<ConfigError>(
                 [&] { run_trial({"corridor", 0, 1, no_device({"trial.face_landmark=true"})}, dir / "c"); })
                 .find("no destination landmark"),
+            std::string::npos);
+}
+
+TEST(ClosedLoopTrial, ItsSensorStreamsSavedAsARecordingReplayTheEstimatorToTheSameEstimate) {
+  ScratchDir dir("trial_recording");
+  const std::vector<std::string> o = {"trial.timeout_s=12", "trial.save_recording=true"};
+  run_trial({"corridor", 0, 1, preset("smart-cane", o)}, dir / "t");
+  const io::Recording rec = io::read_navaid_recording(dir / "t" / "recording");
+  ASSERT_FALSE(rec.features.empty());
+  EXPECT_EQ(rec.imu.size(), rec.groundtruth.size());  // the true state at every IMU sample
+  EXPECT_NEAR(rec.calibration.cameras.front().rate_hz, 10.0, 1e-9);  // the preset's rate, as fed
+  EXPECT_FALSE(rec.landmarks.empty());
+  // `navaid run` on it with the device's estimator keys ends where the trial's estimate ended.
+  RecordingRunOptions run;
+  run.recording = dir / "t" / "recording";
+  run.out = dir / "run";
+  run.plot = false;
+  run.config = Config::parse("{}", "<test>", {"estimator.solver.max_iterations=12"});
+  run_recording(run);
+  std::istringstream track(read_text(dir / "t" / "track.csv")), estimates(read_text(dir / "run" / "estimates.csv"));
+  std::string line, last_track, last_estimate;
+  while (std::getline(track, line)) last_track = line;
+  while (std::getline(estimates, line)) last_estimate = line;
+  auto field = [](const std::string& csv, int i) {
+    std::istringstream in(csv);
+    std::string f;
+    for (int k = 0; k <= i; ++k) std::getline(in, f, ',');
+    return std::stod(f);
+  };
+  // est_x and est_y are written with 4 decimals at the 0.1 s track tick
+  EXPECT_NEAR(field(last_track, 6), field(last_estimate, 1), 2e-4);
+  EXPECT_NEAR(field(last_track, 7), field(last_estimate, 2), 2e-4);
+  // Without a device there is nothing to record.
+  EXPECT_NE(navaid::testing::error_message<ConfigError>(
+                [&] { run_trial({"corridor", 0, 1, no_device({"trial.save_recording=true"})}, dir / "n"); })
+                .find("needs a device"),
             std::string::npos);
 }
 

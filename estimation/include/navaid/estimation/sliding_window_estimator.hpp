@@ -71,6 +71,9 @@ struct EstimatorStatistics {
   std::size_t keyframes = 0;         ///< frames kept as keyframes
   std::size_t solves = 0;
   std::size_t solver_iterations = 0;  ///< Levenberg-Marquardt iterations over all solves
+  /// Solves stopped by estimator.solver.max_iterations before they converged (a cap that cuts
+  /// solves short leaves errors the next frames inherit: raise it, or look at why).
+  std::size_t solves_at_iteration_cap = 0;
   std::size_t marginalizations = 0;
   std::size_t marginalization_failures = 0;  ///< prior dropped, gauge pinned instead
   /// joint: 1 once T_ENU_W was initialized from the fixes; decoupled: successful registrations
