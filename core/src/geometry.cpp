@@ -155,4 +155,9 @@ Quat quat_from_rpy(double roll, double pitch, double yaw) {
 
 double yaw_of(const Quat& q) { return rpy_from_quat(q).z(); }
 
+double wrap_angle(double a) {
+  a = std::remainder(a, 2.0 * M_PI);
+  return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+
 }  // namespace navaid

@@ -10,6 +10,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/io/navaid_recording.hpp"
+#include "navaid/io/targets_csv.hpp"
 #include "navaid/estimation/estimator_config.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
 #include "navaid/estimation/sliding_window_estimator.hpp"
@@ -17,6 +18,7 @@
 #include "navaid/experiments/device_preset.hpp"
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/experimenter.hpp"
+#include "navaid/experiments/reach_protocol.hpp"
 #include "navaid/mapping/pose_uncertainty.hpp"
 #include "navaid/mapping/segmentation_link.hpp"
 #include "navaid/planning/path_guidance.hpp"
@@ -24,6 +26,7 @@
 #include "navaid/simulation/osm_export.hpp"
 #include "navaid/simulation/person_motion.hpp"
 #include "navaid/simulation/simulation_config.hpp"
+#include "navaid/simulation/simulator.hpp"
 
 namespace navaid::experiments {
 
@@ -87,6 +90,14 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   config.apply_override(fmt::format("simulation.world_seed={}", spec.world_seed));
   config.apply_override(fmt::format("seed={}", spec.seed));
   const bool with_device = config.has("device.name");
+  // W-ROMA's task, reaching for an object (reach_protocol.hpp): a hand-target device's by default.
+  const bool hand_device = with_device && config.has("device.guidance") &&
+                           config.get_string("device.guidance") == to_string(GuidanceKind::kHandTarget);
+  const bool reach_task = config.get_string("trial.task", hand_device ? "reach" : "walk", {"walk", "reach"}) == "reach";
+  if (reach_task && !config.has("simulation.targets")) config.apply_override("simulation.targets=true");
+  // A person searching with the hand points it level (the hand mount's 10 deg pitch is a walk's):
+  // the hand unit's aligned cone (5 deg far away) is then reachable.
+  if (reach_task && !config.has("mount_pitch_deg")) config.apply_override("mount_pitch_deg=0");
   if (with_device && !config.has("mount")) {
     const auto actuator = interaction::device_kind_from_string(config.get_string("device.actuator"));
     if (actuator) config.apply_override("mount=" + device_mount(*actuator));
@@ -100,7 +111,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   simulation::UserModel user_model = simulation::read_user_model(config);
 
   // The trial's own keys.
-  const int render_width = static_cast<int>(config.get_int("trial.render_width", 160, 16, 4096));
+  // The tag detector of a hand-target device needs more pixels than mapping does.
+  const int render_width = static_cast<int>(config.get_int("trial.render_width", reach_task ? 320 : 160, 16, 4096));
   const double contact_rate = config.get_double("trial.contact_rate_hz", 20.0, {1.0, 1000.0});
   const double check_m = config.get_double("trial.guidance_check_m", 0.7, {0.05, 10.0});
   const double route_turn_rad = config.get_double("trial.route_turn_deg", 60.0, {0.0, 180.0}) * M_PI / 180.0;
@@ -116,8 +128,19 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   simulation::WalkerConfig walker = sim.walker;
   walker.ground_z_m = scenario.ground_z_m;
   const simulation::WalkerTrajectory nominal(scenario.path, walker);
-  const double timeout_s =
-      config.get_double("trial.timeout_s", 3.0 * nominal.length() / user_model.speed_mps + 20.0, {1.0, 36000.0});
+  std::optional<ReachProtocol> reach;
+  std::optional<simulation::HandMotion> hand;
+  if (reach_task) {
+    reach.emplace(scenario, read_reach_protocol_config(config), user_model, simulation::read_reach_model(config),
+                  with_device, spec.seed);
+    hand.emplace(simulation::read_hand_motion_config(config));
+  }
+  const double timeout_s = config.get_double(
+      "trial.timeout_s",
+      reach_task ? config.get_double("trial.reach.locate_s", 6.0, {0.0, 60.0}) + 60.0 +
+                       config.get_double("trial.reach.time_limit_s", 120.0, {5.0, 3600.0})
+                 : 3.0 * nominal.length() / user_model.speed_mps + 20.0,
+      {1.0, 36000.0});
 
   std::optional<DeviceSpec> device;
   if (with_device) {
@@ -127,18 +150,19 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       config.apply_override(fmt::format("device.goal_start_frame_m=[{:.6f},{:.6f}]", rel.x(), rel.y()));
     }
     device = read_device_spec(config);
-    if (device->guidance == GuidanceKind::kHandTarget)
-      throw Error(fmt::format("device {}: its {} guidance does not run in closed loop yet (the hand's reach toward "
-                              "the object is not simulated); trials support route, walking-path and obstacle-rumble "
-                              "devices",
-                              device->name, to_string(device->guidance)));
+    if ((device->guidance == GuidanceKind::kHandTarget) != reach_task)
+      throw ConfigError(config.origin("trial.task"), "trial.task",
+                        fmt::format("device {} ({} guidance) does not do the {} task: reach goes with a hand-target "
+                                    "device (w-roma) or none, walk with the others",
+                                    device->name, to_string(device->guidance), reach_task ? "reach" : "walk"));
   }
   // Cane users find their own way to the goal; so does the augmented cane's user, toward the
   // music source (the cane only warns); a device with a path or route leads.
-  const bool goal_known = !device || device->guidance == GuidanceKind::kObstacleRumble;
+  const bool goal_known = !reach_task && (!device || device->guidance == GuidanceKind::kObstacleRumble);
   // eLabrador's success (§V-E): arrived and facing the destination's landmark. A route trial ends
   // where the person stops, trial.settle_s after they arrived (the turn to face it).
-  const bool needs_facing = config.get_bool("trial.face_landmark", device && device->guidance == GuidanceKind::kRoute);
+  const bool needs_facing =
+      !reach_task && config.get_bool("trial.face_landmark", device && device->guidance == GuidanceKind::kRoute);
   std::optional<simulation::Vec2> landmark;
   if (needs_facing) {
     if (!simulation::has_streets(scenario.name))
@@ -167,10 +191,12 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     const int h = static_cast<int>(std::lround(1.0 * sim.camera.height * render_width / sim.camera.width));
     render_camera = simulation::rescale_camera(sim.camera, render_width, h);
   }
-  sim.render.render_intensity = false;  // mapping reads depth and labels
+  sim.render.render_intensity = reach_task;  // mapping reads depth and labels; the tag detector intensity
 
   fs::create_directories(out);
   write_simulation_yaml(out / "simulation.yaml", scenario.name, scenario_options);
+  // The object's tag for the hand-target stage, as a simulated recording has it.
+  if (reach_task) simulation::write_scenario_targets(scenario, out / io::kTargetsCsv);
 
   // The device: the estimator on the rig's IMU and feature observations, the full-device pipeline.
   std::optional<estimation::SlidingWindowEstimator> estimator;
@@ -214,7 +240,9 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   motion.scan_amplitude_rad = sim.mount.scan_amplitude_rad;
   motion.scan_period_s = sim.mount.scan_period_s;
   const std::uint64_t person_seed = spec.seed * 0x9E3779B97F4A7C15ULL + 17;
-  simulation::PersonMotion body(motion, start, start_heading, person_seed);
+  simulation::PersonMotion body(motion, reach ? reach->start_position() : start,
+                                reach ? reach->start_heading() : start_heading, person_seed);
+  const double mount_z = scenario.ground_z_m + sim.mount.height_m;
   // The long cane: swept by cane users and by the augmented cane's user (it is their cane); the
   // Smart Cane rolls its wheel instead. user.cane.enabled says otherwise.
   if (!config.has("user.cane.enabled")) user_model.cane.enabled = goal_known;
@@ -241,7 +269,11 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     saved.calibration.cameras.front().rate_hz = camera_rate;  // the rate the features come at
   }
   TrialResult r;
-  std::ofstream track = open_csv(out / "track.csv", "t_s,x,y,heading_deg,speed_mps,veer_deg,est_x,est_y,est_heading_deg,est_mode,est_sigma_xy_m");
+  std::ofstream track = open_csv(
+      out / "track.csv",
+      reach ? "t_s,x,y,heading_deg,speed_mps,veer_deg,est_x,est_y,est_heading_deg,est_mode,est_sigma_xy_m,hand_fwd_m,"
+              "hand_left_m,hand_up_m,hand_to_object_m"
+            : "t_s,x,y,heading_deg,speed_mps,veer_deg,est_x,est_y,est_heading_deg,est_mode,est_sigma_xy_m");
   std::ofstream instructions = open_csv(out / "instructions.csv", "t_s,kind,value");
   std::ofstream contact_csv = open_csv(out / "contacts.csv", "t_s,part,semantic,moving,primitive,height_m,x,y");
   bool pointing_into_obstacle = false;
@@ -281,6 +313,10 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       const simulation::Instruction i = felt.front();
       felt.pop_front();
       instructions << fmt::format("{:.3f},{},{:.4f}\n", i.t_s, to_string(i.kind), i.value);
+      if (reach) {
+        reach->perceive(i);
+        continue;
+      }
       user.perceive(i);
       if (const auto heading = instructed_heading(i)) {
         const auto blocked = contacts.blocked_along(body.position(), *heading, check_m);
@@ -291,30 +327,37 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         pointing_into_obstacle = blocked.has_value();
       }
     }
-    simulation::MotionCommand command = user.decide(t_s, body, contacts.cane_touch(), bump);
+    // Reaching: contacts count, and obstacles stop the body, only while the person searches (a
+    // sighted guide leads them before).
+    const bool on_own = !reach || reach->phase() == ReachProtocol::Phase::kSearch;
+    simulation::MotionCommand command =
+        reach ? reach->decide(t_s, body, *hand, mount_z, bump.has_value()) : user.decide(t_s, body, contacts.cane_touch(), bump);
     if (t_s < 0) command.speed_mps = 0;  // the still start
     bump.reset();
     if (t > begin) {
       const simulation::Vec2 from = body.position();
       body.step(command, dt);
+      if (hand) hand->step(dt);
       // Walls do not give way: a step into an obstacle ends where it began, and the person feels it.
-      bump = contacts.bump(from, body.position(), body.heading());
+      if (on_own) bump = contacts.bump(from, body.position(), body.heading());
       if (bump) body.halt_at(from);
     }
-    const simulation::KinematicState state = body.state();
+    const simulation::KinematicState state =
+        hand ? hand->compose(body.state(), body.heading(), body.yaw_rate(), body.yaw_acceleration()) : body.state();
     if (body.speed() > 0.05) {
       walking_s += dt;
       if (!walked_off) walked_off = t_s;
     }
     if (t >= next_contact) {
       next_contact += contact_dt_ns;
-      if (t_s >= 0)
+      if (t_s >= 0 && !reach)
         if (const auto heading = experimenter.watch(t_s, body.position(), body.speed(), user.arrived())) {
           user.redirect(*heading, experimenter_config.ahead_m, body);
           instructions << fmt::format("{:.3f},experimenter,{:.4f}\n", t_s, *heading);
         }
       const simulation::World moving = simulation::moving_world(scenario.moving, t_s);
-      for (const auto& c : contacts.update(t_s, body.position(), body.heading(), moving)) {
+      for (const auto& c : on_own ? contacts.update(t_s, body.position(), body.heading(), moving)
+                                  : std::vector<simulation::Contact>{}) {
         r.contacts.push_back(c);
         (c.part == simulation::BodyPart::kCane ? r.cane_contacts : r.body_contacts) += 1;
         contact_csv << fmt::format("{:.3f},{},{},{},{},{:.3f},{:.3f},{:.3f}\n", c.t_s, to_string(c.part),
@@ -328,11 +371,16 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
                            body.heading() * 180.0 / M_PI, body.speed(), body.veer() * 180.0 / M_PI);
       // What the device believes: its newest estimate, in its own world frame.
       if (last_estimate)
-        track << fmt::format(",{:.4f},{:.4f},{:.3f},{},{:.4f}\n", last_estimate->T_W_B.t.x(),
+        track << fmt::format(",{:.4f},{:.4f},{:.3f},{},{:.4f}", last_estimate->T_W_B.t.x(),
                              last_estimate->T_W_B.t.y(), planning::body_yaw(last_estimate->T_W_B) * 180.0 / M_PI,
                              to_string(last_estimate->mode), mapping::pose_uncertainty(*last_estimate).sigma_xy);
       else
-        track << ",,,,,\n";
+        track << ",,,,,";
+      // The hand of a reaching person: its offset from the body and how far it is from the object.
+      if (reach)
+        track << fmt::format(",{:.3f},{:.3f},{:.3f},{:.3f}", hand->offset().x(), hand->offset().y(), hand->offset().z(),
+                             reach->distance_to_object(state.T_W_B.t));
+      track << "\n";
     }
     person_s += seconds_since(tp);
 
@@ -389,7 +437,14 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     }
 
     const double to_goal = (body.position() - goal).norm();
-    if (needs_facing) {
+    if (reach) {
+      reach->check(t_s, state.T_W_B.t);
+      if (reach->phase() == ReachProtocol::Phase::kDone) {
+        r.success = reach->success();
+        r.outcome = reach->outcome();
+        break;
+      }
+    } else if (needs_facing) {
       if (user.arrived() && !arrived_at) arrived_at = t_s;
       if (arrived_at && t_s >= *arrived_at + settle_s) {
         const simulation::Vec2 d = *landmark - body.position();
@@ -420,7 +475,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     device_s += seconds_since(tp);
   }
 
-  r.duration_s = walked_off ? std::max(0.0, end_s - *walked_off) : 0.0;
+  r.duration_s = reach ? reach->search_time_s(end_s) : walked_off ? std::max(0.0, end_s - *walked_off) : 0.0;
   r.path_length_m = body.distance_walked();
   r.mean_speed_mps = walking_s > 0 ? r.path_length_m / walking_s : 0.0;
   r.user = user.counts();
@@ -444,6 +499,16 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   j["mean_speed_mps"] = r.mean_speed_mps;
   j["goal_distance_m"] = r.goal_distance_m;
   if (needs_facing) j["faced_landmark"] = r.faced_landmark;
+  if (reach) {
+    const simulation::ReachCounts& k = reach->counts();
+    j["reach"] = {{"guided", with_device},
+                  {"search_start_s", reach->search_start_s() ? nlohmann::ordered_json(*reach->search_start_s()) : nullptr},
+                  {"search_time_s", reach->search_time_s(end_s)},
+                  {"closest_m", reach->closest_m()},
+                  {"failed_grasps", reach->failed_grasps()},
+                  {"hand_cues", k.hand_cues}, {"ignored", k.ignored}, {"walks", k.walks}, {"turns", k.turns},
+                  {"grasps", k.grasps}, {"detours", k.detours}, {"spiral_rings", k.rings}};
+  }
   j["experimenter_corrections"] = r.experimenter_corrections;
   j["max_off_route_m"] = r.max_off_route_m;
   nlohmann::ordered_json parts = {{"legs", 0}, {"torso", 0}, {"head", 0}, {"cane", 0}};

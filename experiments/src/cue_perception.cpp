@@ -40,9 +40,30 @@ std::optional<Instruction> felt(const interaction::ActuatorPattern& p, CueKind k
       return Instruction{t_s, K::kTurnToward, on.front() == interaction::RumbleAdapter::kLeft ? 1.0 : -1.0};
     }
     case interaction::DeviceKind::kHand:
-      return std::nullopt;  // the hand reaches, the body does not walk by it
+      return std::nullopt;  // read from the cue's direction (hand_instruction)
   }
   return std::nullopt;
+}
+
+/// The hand unit's direction as the person moves the hand, in the hand frame (x right, y down,
+/// z forward); zero for hold.
+Vec3 hand_vector(planning::HandDirection d) {
+  using D = planning::HandDirection;
+  const double h = M_SQRT1_2;
+  switch (d) {
+    case D::kHold: return Vec3::Zero();
+    case D::kRight: return Vec3(1, 0, 0);
+    case D::kUpRight: return Vec3(h, -h, 0);
+    case D::kUp: return Vec3(0, -1, 0);
+    case D::kUpLeft: return Vec3(-h, -h, 0);
+    case D::kLeft: return Vec3(-1, 0, 0);
+    case D::kDownLeft: return Vec3(-h, h, 0);
+    case D::kDown: return Vec3(0, 1, 0);
+    case D::kDownRight: return Vec3(h, h, 0);
+    case D::kForward: return Vec3(0, 0, 1);
+    case D::kBackward: return Vec3(0, 0, -1);
+  }
+  return Vec3::Zero();
 }
 
 }  // namespace
@@ -66,11 +87,19 @@ std::optional<Instruction> perceive_cue(const interaction::CueEvent& ev, double 
   // A refresh repeats what is already felt, except the wheel, whose pull is read continuously, and
   // the belt's front vibrator, whose intermittent pulse means "walk forward" (§III-E) to a person
   // who stopped meanwhile (a side vibrator's refresh would turn them twice).
+  // W-ROMA's hand unit repeats its command every two seconds, and each is a move of the hand.
   const bool continuous = ev.pattern && (ev.pattern->device == interaction::DeviceKind::kWheel ||
+                                         ev.pattern->device == interaction::DeviceKind::kHand ||
                                          (ev.pattern->device == interaction::DeviceKind::kBelt &&
                                           ev.cue.kind == interaction::CueKind::kOnCourse));
   const bool fresh = ev.outcome == CueOutcome::kSent || (ev.outcome == CueOutcome::kRefreshed && continuous);
   if (!fresh || !ev.pattern || !ev.cue.felt) return std::nullopt;
+  if (ev.pattern->device == interaction::DeviceKind::kHand && ev.cue.kind == CueKind::kObjectDirection) {
+    if (!ev.cue.hand) return std::nullopt;
+    Instruction i{t_s, K::kMoveHand, 0};
+    i.hand_H = hand_vector(*ev.cue.hand);
+    return i;
+  }
   return felt(*ev.pattern, ev.cue.kind, t_s);
 }
 

@@ -258,7 +258,8 @@ void MapSession::write_layer_pngs(const std::filesystem::path& dir, const std::s
 nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   const auto& n = mapper_.counters();
   if (n.no_depth > 0) spdlog::warn("{} frames without depth were not mapped", n.no_depth);
-  if (n.mapped == 0) spdlog::warn("no frame was mapped (timing.csv's outcome column says why)");
+  // A device that maps no frame by design (map_every 0) is not warned about.
+  if (n.mapped == 0 && n.frames > 0) spdlog::warn("no frame was mapped (timing.csv's outcome column says why)");
   const mapping::SemanticMap& map = mapper_.map();
   map.save(out_ / "map.ot");
   map.write_color_octree(out_ / "map-color.ot");

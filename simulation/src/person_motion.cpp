@@ -6,6 +6,7 @@
 #include <string>
 
 #include "navaid/core/errors.hpp"
+#include "first_order_lag.hpp"
 
 namespace navaid::simulation {
 
@@ -13,21 +14,6 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 
-double wrap(double a) {
-  a = std::remainder(a, kTwoPi);
-  return a <= -M_PI ? a + kTwoPi : a;
-}
-
-/// The rate of change that takes `value` toward `target` with time constant tau, bounded by
-/// `bound`, without passing the target within dt.
-double lag_rate(double value, double target, double tau, double bound, double dt) {
-  // A floor of 5 % of the bound ends the exponential approach in finite time: a person settles.
-  const double error = target - value;
-  const double magnitude = std::max(std::abs(error) / tau, 0.05 * bound);
-  double rate = std::clamp(std::copysign(magnitude, error), -bound, bound);
-  if (std::abs(rate) * dt >= std::abs(error)) rate = error / dt;
-  return rate;
-}
 
 void require(bool ok, const char* field, const char* range) {
   if (!ok) throw ConfigError("", std::string("user.motion.") + field, std::string("must be ") + range);
@@ -54,7 +40,7 @@ void validate(const PersonMotionConfig& c) {
 
 PersonMotion::PersonMotion(const PersonMotionConfig& config, const Vec2& position, double heading_rad,
                            std::uint64_t seed)
-    : config_(config), rng_(seed), p_(position), psi_(wrap(heading_rad)) {
+    : config_(config), rng_(seed), p_(position), psi_(wrap_angle(heading_rad)) {
   validate(config_);
 }
 
@@ -67,7 +53,7 @@ void PersonMotion::step(const MotionCommand& c, double dt) {
   last_dt_ = dt;
   if (c.new_direction) veer_ = 0;
   const double r_target =
-      c.follow_heading ? std::clamp(k.heading_gain_per_s * wrap(c.heading_rad + (c.speed_mps > 0 ? veer_ : 0.0) - psi_),
+      c.follow_heading ? std::clamp(k.heading_gain_per_s * wrap_angle(c.heading_rad + (c.speed_mps > 0 ? veer_ : 0.0) - psi_),
                                     -k.max_turn_rate_rad_s,
                                     k.max_turn_rate_rad_s)
                        : std::clamp(c.turn_rate_rad_s, -k.max_turn_rate_rad_s, k.max_turn_rate_rad_s);
@@ -89,7 +75,7 @@ void PersonMotion::step(const MotionCommand& c, double dt) {
   const double distance = u_ * dt + 0.5 * du_ * dt * dt;
   walked_ += distance;
   gait_phase_ = std::fmod(gait_phase_ + kTwoPi * distance / k.step_length_m, kTwoPi);
-  psi_ = wrap(heading_at(dt));
+  psi_ = wrap_angle(heading_at(dt));
   u_ = std::max(0.0, u_ + du_ * dt);
   r_ += dr_ * dt;
   if (k.veer_sigma > 0 && u_ > 0.05)

@@ -14,10 +14,6 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-double wrap(double a) {
-  a = std::remainder(a, 2.0 * M_PI);
-  return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
 
 }  // namespace
 
@@ -32,6 +28,7 @@ std::string_view to_string(Instruction::Kind kind) {
     case Instruction::Kind::kWait: return "wait";
     case Instruction::Kind::kArrived: return "arrived";
     case Instruction::Kind::kClear: return "clear";
+    case Instruction::Kind::kMoveHand: return "move-hand";
   }
   return "?";
 }
@@ -155,7 +152,7 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
     // Stop; told where the destination lies ("at 9 o'clock"), turn to face it (heard again: again).
     mode_ = Mode::kArrived;
     arrived_ = true;
-    if (i.value != 0.0) heading_ = wrap(body.heading() + i.value + turn_error(rng_));
+    if (i.value != 0.0) heading_ = wrap_angle(body.heading() + i.value + turn_error(rng_));
     else if (!facing_set_) heading_ = body.heading();
     facing_set_ = facing_set_ || i.value != 0.0;
     return;
@@ -164,7 +161,7 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
   switch (i.kind) {
     case K::kGo: {
       started_ = true;
-      const double target = wrap(body.heading() + i.value + turn_error(rng_));
+      const double target = wrap_angle(body.heading() + i.value + turn_error(rng_));
       if (std::abs(i.value) > 10 * kDeg) ++counts_.corrections;
       heading_ = target;
       mode_ = Mode::kWalkHeading;
@@ -197,7 +194,7 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
         ++counts_.stops;
         // Search for an open way: turn on the spot toward the side of where they are going.
         const Vec2 d = aim(body.position()) - body.position();
-        turn_side_ = wrap(std::atan2(d.y(), d.x()) - body.heading()) >= 0 ? 1.0 : -1.0;
+        turn_side_ = wrap_angle(std::atan2(d.y(), d.x()) - body.heading()) >= 0 ? 1.0 : -1.0;
       }
       mode_ = Mode::kSearch;
       break;
@@ -218,6 +215,7 @@ void SimulatedUser::act(const Instruction& i, const PersonMotion& body) {
         speed_factor_ = 1.0;
       }
       break;
+    case K::kMoveHand: break;  // for the hand (reaching_user.hpp), not the walk
   }
   detour_heading_.reset();  // a fresh instruction supersedes a cane detour
   // A new direction from the device: the veer built up while walking the old one is gone.
@@ -231,7 +229,7 @@ void SimulatedUser::redirect(double heading_W, double distance_m, const PersonMo
   speed_factor_ = 1.0;
   new_direction_ = true;
   mode_ = Mode::kWalkHeading;
-  heading_ = wrap(heading_W);
+  heading_ = wrap_angle(heading_W);
   if (goal_known_) {
     detour_heading_ = heading_;
     detour_end_m_ = body.distance_walked() + distance_m;
@@ -289,17 +287,17 @@ MotionCommand SimulatedUser::decide(double t_s, const PersonMotion& body, const 
     avoid_side_ = cane->bearing_rad >= 0 ? -1.0 : 1.0;
     if (std::abs(cane->bearing_rad) > kShorelineBearing && !bump) {
       // Touched off to the side (a wall along the way, the shoreline): edge away without stopping.
-      detour_heading_ = wrap(body.heading() + avoid_side_ * kShorelineTurn);
+      detour_heading_ = wrap_angle(body.heading() + avoid_side_ * kShorelineTurn);
       detour_end_m_ = body.distance_walked() + 0.5 * model_.cane_detour_m;
     } else {
       pause_until_ = t_s + model_.cane_stop_s;
-      detour_heading_ = wrap(body.heading() + avoid_side_ * model_.cane_turn_rad);
+      detour_heading_ = wrap_angle(body.heading() + avoid_side_ * model_.cane_turn_rad);
       detour_end_m_ = body.distance_walked() + model_.cane_detour_m;
     }
   } else if (pause_until_ && t_s >= *pause_until_) {
     if (cane) {
       // Still blocked after turning away: turn further the same way (a corner) and feel again.
-      detour_heading_ = wrap(*detour_heading_ + avoid_side_ * 0.5 * model_.cane_turn_rad);
+      detour_heading_ = wrap_angle(*detour_heading_ + avoid_side_ * 0.5 * model_.cane_turn_rad);
       pause_until_ = t_s + model_.cane_stop_s;
     } else {
       pause_until_.reset();

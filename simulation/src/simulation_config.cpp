@@ -191,6 +191,8 @@ SimulationConfig read_simulation_config(const Config& c, const Scenario& scenari
   s.scenario = scenario.name;
   s.scenario_options = read_scenario_options(c);
   s.mount = mount_preset(c.get_string("mount", scenario.default_mount, mount_names()));
+  // The camera's downward pitch on its mount, when not the mount's own (a hand pointing level).
+  s.mount.camera_pitch_rad = c.get_double("mount_pitch_deg", s.mount.camera_pitch_rad * 180.0 / M_PI, {-60.0, 60.0}) * M_PI / 180.0;
   s.sensor_preset = c.get_string("sensor.preset", s.mount.default_sensor, sensor_preset_names());
   const SensorPreset preset = sensor_preset(s.sensor_preset);
   s.seed = static_cast<std::uint64_t>(c.get_int("seed", 0, 0, std::numeric_limits<long long>::max()));

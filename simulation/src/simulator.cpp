@@ -178,6 +178,18 @@ void write_top_view(const Scenario& scenario, const RayCaster& world, const std:
 
 }  // namespace
 
+void write_scenario_targets(const Scenario& scenario, const fs::path& file) {
+  if (scenario.targets.empty()) {
+    std::error_code ec;
+    fs::remove(file, ec);  // a stale file of an overwritten recording
+    return;
+  }
+  std::vector<io::TargetGroundTruth> targets;
+  for (const TargetObject& t : scenario.targets)
+    targets.push_back({t.name, t.semantic, t.tag_family, t.tag_id, t.tag_size_m, t.center_W, t.half_extents, t.T_W_tag});
+  io::write_targets_csv(file, targets);
+}
+
 SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& config, const fs::path& out,
                            const SimulateOptions& options) {
   std::error_code ec;
@@ -268,14 +280,7 @@ SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& con
   io::write_navaid_recording(rec, out, write_options);
 
   // Ground truth of the tagged target objects (hand guidance); only scenarios that have them.
-  if (!scenario.targets.empty()) {
-    std::vector<io::TargetGroundTruth> targets;
-    for (const TargetObject& t : scenario.targets)
-      targets.push_back({t.name, t.semantic, t.tag_family, t.tag_id, t.tag_size_m, t.center_W, t.half_extents, t.T_W_tag});
-    io::write_targets_csv(out / io::kTargetsCsv, targets);
-  } else {
-    fs::remove(out / io::kTargetsCsv, ec);  // a stale file of an overwritten recording
-  }
+  write_scenario_targets(scenario, out / io::kTargetsCsv);
 
   std::vector<io::StampedPose> poses;
   poses.reserve(rec.groundtruth.size());

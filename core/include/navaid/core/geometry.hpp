@@ -73,5 +73,7 @@ SE3 interpolate(const SE3& a, const SE3& b, double alpha);
 Vec3 rpy_from_quat(const Quat& q);
 Quat quat_from_rpy(double roll, double pitch, double yaw);
 double yaw_of(const Quat& q);
+/// An angle [rad] wrapped to (-pi, pi].
+double wrap_angle(double a);
 
 }  // namespace navaid

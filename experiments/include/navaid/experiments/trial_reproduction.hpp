@@ -31,4 +31,11 @@ void run_smart_cane_table2(const std::filesystem::path& matrix, const Reproducti
 void run_elabrador_fig7_8(const std::filesystem::path& matrix, const ReproductionRequest& request,
                           const ReproductionEnvironment& env);
 
+/// W-ROMA Table II: reaching for an object without a device (from memory) and with W-ROMA's hand
+/// guidance in the lab (trial.task=reach): success and the time of successful searches beside the
+/// paper's totals, a verdict from the orderings its text states. Writes table2.md, table2.csv,
+/// verdict.md and a trial study folder per condition.
+void run_w_roma_table2(const std::filesystem::path& matrix, const ReproductionRequest& request,
+                       const ReproductionEnvironment& env);
+
 }  // namespace navaid::experiments

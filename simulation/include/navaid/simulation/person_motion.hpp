@@ -80,6 +80,7 @@ class PersonMotion {
   double heading() const { return psi_; }  ///< walking heading (without the rig's scan)
   double speed() const { return u_; }
   double yaw_rate() const { return r_; }
+  double yaw_acceleration() const { return dr_; }  ///< over the last step
   double distance_walked() const { return walked_; }
   const PersonMotionConfig& config() const { return config_; }
 

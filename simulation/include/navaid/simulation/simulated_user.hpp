@@ -58,10 +58,13 @@ struct Instruction {
     kWait,       ///< "locating": stop until directions come again
     kArrived,    ///< the goal is reached; `value` [rad]: where the destination lies, 0 = not said
     kClear,      ///< the haptic pattern went off: whatever it said is over
+    kMoveHand,   ///< move the hand along `hand_H` (W-ROMA's hand unit); zero: hold it there
   };
   double t_s = 0;
   Kind kind = Kind::kKeepGoing;
   double value = 0;
+  /// kMoveHand: the direction in the hand frame (x right, y down, z forward: the camera's axes).
+  Vec3 hand_H = Vec3::Zero();
 };
 std::string_view to_string(Instruction::Kind kind);
 

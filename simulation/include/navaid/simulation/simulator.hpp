@@ -45,6 +45,10 @@ struct SimulationSummary {
   double frames_seconds = 0;           ///< wall time of the frame stage
 };
 
+/// The ground truth of the scenario's tagged target objects as targets.csv in `file`
+/// (docs/recording-format.md); removes a stale file when the scenario has none.
+void write_scenario_targets(const Scenario& scenario, const std::filesystem::path& file);
+
 SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& config, const std::filesystem::path& out,
                            const SimulateOptions& options = {});
 
