@@ -137,9 +137,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   }
   const double timeout_s = config.get_double(
       "trial.timeout_s",
-      reach_task ? config.get_double("trial.reach.locate_s", 6.0, {0.0, 60.0}) + 60.0 +
-                       config.get_double("trial.reach.time_limit_s", 120.0, {5.0, 3600.0})
-                 : 3.0 * nominal.length() / user_model.speed_mps + 20.0,
+      reach ? reach->config().locate_s + 60.0 + reach->config().time_limit_s  // + the escort
+            : 3.0 * nominal.length() / user_model.speed_mps + 20.0,
       {1.0, 36000.0});
 
   std::optional<DeviceSpec> device;

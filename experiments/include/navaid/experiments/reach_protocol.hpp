@@ -57,6 +57,7 @@ class ReachProtocol {
   simulation::Vec2 start_position() const { return locate_xy_; }
   double start_heading() const { return locate_heading_; }
   Phase phase() const { return phase_; }
+  const ReachProtocolConfig& config() const { return config_; }
 
   /// A cue the device gave; heard only while searching.
   void perceive(const simulation::Instruction& i);
