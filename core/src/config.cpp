@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -18,6 +19,9 @@ struct Config::Impl {
   std::string file = "<config>";
   std::map<std::string, std::string> override_origin;  // key -> "--set key=value"
   mutable std::set<std::string> read_keys;
+  // Defaults handed out for absent keys, in the order first read: dump() writes them beside the
+  // given keys so that a run folder's configuration is the whole one used.
+  mutable std::vector<std::pair<std::string, YAML::Node>> defaults_read;
 };
 
 namespace {
@@ -73,6 +77,40 @@ void collect_leaves(const YAML::Node& node, const std::string& prefix, std::vect
   } else if (!prefix.empty()) {
     out.push_back(prefix);
   }
+}
+
+std::string shortest(double v) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, r.ptr);
+}
+
+// Sets `key` in `root` unless a value is in the way (a default never replaces a given value).
+void insert_default(YAML::Node& root, const std::string& key, const YAML::Node& value) {
+  const auto parts = split_key(key);
+  YAML::Node node;
+  node.reset(root);
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node child = node[parts[i]];
+    if (child.IsDefined() && !child.IsNull() && !child.IsMap()) return;
+    if (!child.IsDefined() || child.IsNull()) node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+    YAML::Node next = node[parts[i]];
+    node.reset(next);
+  }
+  YAML::Node leaf = node[parts.back()];
+  if (!leaf.IsDefined() || leaf.IsNull()) node[parts.back()] = value;
+}
+
+using DefaultsRead = std::vector<std::pair<std::string, YAML::Node>>;
+
+// Marks an absent key as read and remembers the default handed out (the first, if read twice).
+template <typename T>
+T hand_out_default(std::set<std::string>& read_keys, DefaultsRead& defaults, std::string_view key, const T& fallback,
+                   YAML::Node value) {
+  read_keys.insert(std::string(key));
+  if (std::none_of(defaults.begin(), defaults.end(), [&](const auto& d) { return d.first == key; }))
+    defaults.emplace_back(std::string(key), std::move(value));
+  return fallback;
 }
 
 }  // namespace
@@ -187,7 +225,8 @@ double Config::get_double(std::string_view key, Range allowed) const {
 }
 
 double Config::get_double(std::string_view key, double fallback, Range allowed) const {
-  return has(key) ? get_double(key, allowed) : (impl_->read_keys.insert(std::string(key)), fallback);
+  return has(key) ? get_double(key, allowed)
+                  : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, YAML::Node(shortest(fallback)));
 }
 
 long long Config::get_int(std::string_view key, long long min, long long max) const {
@@ -202,7 +241,8 @@ long long Config::get_int(std::string_view key, long long min, long long max) co
 }
 
 long long Config::get_int(std::string_view key, long long fallback, long long min, long long max) const {
-  return has(key) ? get_int(key, min, max) : (impl_->read_keys.insert(std::string(key)), fallback);
+  return has(key) ? get_int(key, min, max)
+                  : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, YAML::Node(std::to_string(fallback)));
 }
 
 bool Config::get_bool(std::string_view key) const {
@@ -213,7 +253,9 @@ bool Config::get_bool(std::string_view key) const {
 }
 
 bool Config::get_bool(std::string_view key, bool fallback) const {
-  return has(key) ? get_bool(key) : (impl_->read_keys.insert(std::string(key)), fallback);
+  return has(key) ? get_bool(key)
+                  : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback,
+                                     YAML::Node(std::string(fallback ? "true" : "false")));
 }
 
 std::string Config::get_string(std::string_view key, const std::vector<std::string>& allowed) const {
@@ -229,7 +271,8 @@ std::string Config::get_string(std::string_view key, const std::vector<std::stri
 
 std::string Config::get_string(std::string_view key, const std::string& fallback,
                                const std::vector<std::string>& allowed) const {
-  return has(key) ? get_string(key, allowed) : (impl_->read_keys.insert(std::string(key)), fallback);
+  return has(key) ? get_string(key, allowed)
+                  : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, YAML::Node(fallback));
 }
 
 std::vector<double> Config::get_doubles(std::string_view key, std::size_t size, Range allowed) const {
@@ -249,7 +292,11 @@ std::vector<double> Config::get_doubles(std::string_view key, std::size_t size, 
 std::vector<std::string> Config::get_strings(std::string_view key, const std::vector<std::string>& fallback) const {
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
-  if (!node) return fallback;
+  if (!node) {
+    YAML::Node list(YAML::NodeType::Sequence);
+    for (const auto& name : fallback) list.push_back(name);
+    return hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, list);
+  }
   if (!node->IsSequence()) throw ConfigError(origin(key), std::string(key), "expected a list of names, found a single value or map");
   std::vector<std::string> out;
   for (std::size_t i = 0; i < node->size(); ++i) {
@@ -278,8 +325,11 @@ void Config::reject_unknown_keys() const {
 }
 
 std::string Config::dump() const {
+  YAML::Node whole = YAML::Clone(impl_->root);
+  for (const auto& [key, value] : impl_->defaults_read) insert_default(whole, key, value);
+  whole.SetStyle(YAML::EmitterStyle::Block);  // "{}" plus overrides would otherwise print as one line
   YAML::Emitter out;
-  out << impl_->root;
+  out << whole;
   return std::string(out.c_str()) + "\n";
 }
 

@@ -78,6 +78,23 @@ TEST(SimulateCli, SameSeedSameFilesWhateverTheCacheAndThreads) {
   EXPECT_NE(d.at("imu.csv"), a.at("imu.csv"));
 }
 
+TEST(SimulateCli, SimulationYamlHoldsTheWholeConfigurationAndReproducesTheRecording) {
+  ScratchDir dir("simulate_yaml");
+  ASSERT_EQ(navaid_cli(simulate("corridor", dir / "a", " --seed 4 --set simulation.mode=features")).status, 0);
+  const std::string yaml = read_text(dir / "a" / "simulation.yaml");
+  // Defaults nobody set are written too: the walker's gait, the IMU noise, the features' limits.
+  for (const char* key : {"scan_amplitude:", "gyro_noise_density:", "max_per_frame:", "still_time:", "seed: 4"})
+    EXPECT_NE(yaml.find(key), std::string::npos) << key << " missing from\n" << yaml;
+  const auto again = navaid_cli("simulate --config '" + (dir / "a" / "simulation.yaml").string() + "' --out '" +
+                                (dir / "b").string() + "'");
+  ASSERT_EQ(again.status, 0) << again.output;
+  const auto a = folder_contents(dir / "a"), b = folder_contents(dir / "b");
+  for (const auto& [name, bytes] : a) {
+    if (name == "summary.json") continue;  // holds wall times
+    EXPECT_TRUE(b.at(name) == bytes) << name << " differs when simulated from simulation.yaml";
+  }
+}
+
 TEST(SimulateCli, FeatureModeWritesObservationsAndLandmarks) {
   ScratchDir dir("simulate_features");
   const fs::path out = dir / "route1";
