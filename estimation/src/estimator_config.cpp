@@ -63,6 +63,13 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.use_depth_3d = c.get_bool("estimator.factors.depth_3d", e.use_depth_3d);
   e.use_gps = c.get_bool("estimator.factors.gps", e.use_gps);
   e.use_mag = c.get_bool("estimator.factors.mag", e.use_mag);
+  e.use_zero_velocity = c.get_bool("estimator.factors.zero_velocity", e.use_zero_velocity);
+  e.zero_velocity_sigma_mps = c.get_double("estimator.zero_velocity.sigma", e.zero_velocity_sigma_mps, {1e-6, 10});
+  e.zero_velocity_max_motion_px =
+      c.get_double("estimator.zero_velocity.max_motion_px", e.zero_velocity_max_motion_px, {0, 100});
+  e.zero_velocity_lookback_s = c.get_double("estimator.zero_velocity.lookback", e.zero_velocity_lookback_s, {0.01, 10});
+  e.zero_velocity_max_speed_mps =
+      c.get_double("estimator.zero_velocity.max_speed", e.zero_velocity_max_speed_mps, {0, 10});
   e.use_depth = c.get_bool("estimator.depth.enabled", e.use_depth);
   e.gps_max_time_offset_s = c.get_double("estimator.gps.max_time_offset", e.gps_max_time_offset_s, {0, 1});
   e.gps_huber_threshold = c.get_double("estimator.gps.huber_threshold", e.gps_huber_threshold, {0.1, 100});
@@ -156,6 +163,9 @@ EstimatorConfig read_estimator_config(const Config& c) {
       c.get_double("estimator.initialization.sigma_gyro_bias", e.init_sigma_gyro_bias, {1e-8, 1});
   e.init_sigma_accel_bias =
       c.get_double("estimator.initialization.sigma_accel_bias", e.init_sigma_accel_bias, {1e-8, 10});
+  e.still_gyro_bias = c.get_bool("estimator.initialization.still_gyro_bias", e.still_gyro_bias);
+  e.still_max_motion_px =
+      c.get_double("estimator.initialization.still_max_motion_px", e.still_max_motion_px, {0, 100});
   e.lost_after_s = c.get_double("estimator.lost_after", e.lost_after_s, {0, kInf});
   e.failure_detection = c.get_bool("estimator.failure.detection", e.failure_detection);
   FailureThresholds& f = e.failure;

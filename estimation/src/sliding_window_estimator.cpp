@@ -29,6 +29,7 @@
 #include "navaid/estimation/factors/pose_parametrization.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
 #include "navaid/estimation/factors/time_offset_factors.hpp"
+#include "navaid/estimation/factors/zero_velocity_factor.hpp"
 #include "navaid/estimation/feature_track_store.hpp"
 #include "navaid/estimation/gps_registration.hpp"
 #include "navaid/estimation/imu_preintegration.hpp"
@@ -142,6 +143,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       tracks(o.tracks),
       imu(o.imu),
       pending(o.pending),
+      recent_frames(o.recent_frames),
       state_prior(o.state_prior),
       state_prior_id(o.state_prior_id),
       next_id(o.next_id),
@@ -233,11 +235,12 @@ void SlidingWindowEstimator::Impl::trim_imu() {
   if (first > 2048) imu.erase(imu.begin(), imu.begin() + static_cast<std::ptrdiff_t>(first));
 }
 
-Mat15 SlidingWindowEstimator::Impl::initial_covariance(const Quat& q) const {
+Mat15 SlidingWindowEstimator::Impl::initial_covariance(const Quat& q, double extra_sigma_roll_pitch) const {
   Mat15 P = Mat15::Zero();
   // Roll and pitch come from gravity; yaw and position define W (world-frame angles, converted
   // to the right perturbation of StateEstimate).
-  const Vec3 sigma_world(cfg.init_sigma_roll_pitch_rad, cfg.init_sigma_roll_pitch_rad, kGaugeSigma);
+  const double sigma_rp = std::hypot(cfg.init_sigma_roll_pitch_rad, extra_sigma_roll_pitch);
+  const Vec3 sigma_world(sigma_rp, sigma_rp, kGaugeSigma);
   const Mat3 R = q.toRotationMatrix();
   P.block<3, 3>(0, 0) = R.transpose() * sigma_world.cwiseAbs2().asDiagonal() * R;
   P.block<3, 3>(3, 3) = Mat3::Identity() * kGaugeSigma * kGaugeSigma;
@@ -354,6 +357,9 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
     cur.imu->repropagate_if_needed(prev.b_g(), prev.b_a(), kRepropagateGyro, kRepropagateAccel);
     out.push_back({std::make_shared<ImuFactor>(*cur.imu), nullptr, {prev.pose, prev.speed_bias, cur.pose, cur.speed_bias}});
   }
+  for (auto& s : window)
+    if (s->still && cfg.use_imu)
+      out.push_back({std::make_shared<ZeroVelocityFactor>(cfg.zero_velocity_sigma_mps), nullptr, {s->speed_bias}});
   if (marginal_prior && !marginal_prior->empty())
     out.push_back({std::make_shared<MarginalizationFactor>(marginal_prior), nullptr, marginal_prior->blocks});
   if (state_prior) {
@@ -706,8 +712,18 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   ++stats.frames;
   const Timestamp t = frame.t + camera_to_imu_ns;
   const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
-  if (!initialized && init_method != InitializationMethod::kStill)
-    return collect_for_visual_initialization(frame, t);
+  // The stillness tests look back over the longer of the still window and the zero-velocity span.
+  recent_frames.push_back(frame);
+  const double keep_s = std::max(cfg.still_duration_s, cfg.zero_velocity_lookback_s) + 0.1;
+  while (ns_to_seconds(frame.t - recent_frames.front().t) > keep_s) recent_frames.pop_front();
+  if (!initialized && init_method != InitializationMethod::kStill) {
+    // A re-initialization of a still start while the user stands still: start still again (a
+    // visual initialization needs motion that may not come).
+    if (cfg.init_method != InitializationMethod::kStill || !cfg.still_gyro_bias || !still_start_possible(frame, t))
+      return collect_for_visual_initialization(frame, t);
+    clear_window(/*new_map_frame=*/false);
+    init_method = InitializationMethod::kStill;
+  }
   if (!initialized) {
     if (imu.empty() || imu.front().t > t - still_ns) return initializing_estimate(frame.t);
     last_estimate = initialize(frame, t);
@@ -726,6 +742,11 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   pose_to_block(T, s->pose);
   s->speed_bias[0] = v.x(), s->speed_bias[1] = v.y(), s->speed_bias[2] = v.z();
   for (int i = 3; i < kSpeedBiasSize; ++i) s->speed_bias[i] = last_kf.speed_bias[i];
+  // Zero velocity when the tracks stood still over the look-back and the IMU does not say the
+  // user is moving (a far scene seen straight ahead barely moves in the image on a slow step).
+  s->still = cfg.use_zero_velocity && cfg.use_imu && s->v().norm() <= cfg.zero_velocity_max_speed_mps &&
+             camera_still(frame, cfg.zero_velocity_lookback_s, cfg.zero_velocity_max_motion_px);
+  stats.zero_velocity_frames += s->still;
   window.push_back(std::move(s));
   WindowState& newest = *window.back();
   add_observations(newest.id, frame);
@@ -757,7 +778,10 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   if (cfg.use_gps && cfg.gps_mode == GpsMode::kDecoupled) reregister_gps(newest);
 
   EstimatorMode mode;
-  if (count.features < static_cast<std::size_t>(cfg.min_visual_features)) {
+  // Standing still, the tracks have no parallax to triangulate, but they confirm the stillness
+  // that the zero-velocity update holds: vision still supports the state.
+  const bool seen_still = newest.still && frame.features.size() >= static_cast<std::size_t>(cfg.min_visual_features);
+  if (count.features < static_cast<std::size_t>(cfg.min_visual_features) && !seen_still) {
     if (!imu_only_since) imu_only_since = t;
     mode = ns_to_seconds(t - *imu_only_since) > cfg.lost_after_s ? EstimatorMode::kLost : EstimatorMode::kImuOnly;
   } else {

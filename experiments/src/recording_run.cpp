@@ -351,7 +351,9 @@ std::string run_recording(const RecordingRunOptions& a) {
   j["initialization"] = {{"method", estimation::to_string(est_config.init_method)},
                          {"attempts", st.initialization_attempts},
                          {"failures", st.initialization_failures},
-                         {"last_failure", st.last_initialization_failure}};
+                         {"last_failure", st.last_initialization_failure},
+                         {"still_gyro_bias", st.still_gyro_bias_initializations}};
+  j["zero_velocity_frames"] = st.zero_velocity_frames;
   if (st.failures > 0)
     spdlog::warn("{} implausible solve(s): {} window restart(s) in the same map frame, {} re-initialization(s) in a "
                  "new map frame (last: {})",

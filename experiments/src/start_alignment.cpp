@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/trajectory_alignment.hpp"
 
 namespace navaid::experiments {
 
@@ -21,7 +22,11 @@ SE3 interpolate_pose(const std::vector<io::StampedPose>& gt, Timestamp t) {
 
 SE3 first_state_transform(const StateEstimate& first, const std::vector<io::StampedPose>& gt) {
   const SE3 g = interpolate_pose(gt, first.t);
-  const Mat3 Rz = Eigen::AngleAxisd(yaw_of(g.q) - yaw_of(first.T_W_B.q), Vec3::UnitZ()).toRotationMatrix();
+  // The rotation about z closest to taking the estimate's attitude onto the ground truth's: not
+  // the difference of their Euler yaws, which near pitch +-90 deg (EuRoC's IMU has x up) turns a
+  // small tilt error into degrees of yaw.
+  const Mat3 Rz = Eigen::AngleAxisd(best_yaw(first.T_W_B.rotation() * g.rotation().transpose()), Vec3::UnitZ())
+                      .toRotationMatrix();
   return SE3(Rz, Vec3(g.t - Rz * first.T_W_B.t));
 }
 

@@ -73,6 +73,22 @@ TEST(StartAlignment, FirstStateFramePutsExactEstimatesOntoTheTruth) {
   EXPECT_TRUE(aligned[5].rotation_covariance.isApprox(1e-6 * Mat3::Identity(), 1e-12));
 }
 
+TEST(StartAlignment, ATiltedBodyKeepsItsTiltErrorOutOfTheYaw) {
+  // A body with x up (EuRoC's IMU: pitch near -70 deg), estimated with 0.7 deg of tilt error and
+  // W turned 1 rad: the alignment turns W back by 1 rad and leaves the tilt error as it is (the
+  // difference of Euler yaws would have put ~1.6 deg of it into yaw).
+  const Quat q_gt = quat_from_rpy(0.2, -1.2, 2.0);
+  const std::vector<io::StampedPose> gt{{0, SE3(q_gt, Vec3(1, 2, 3))}, {seconds_to_ns(1.0), SE3(q_gt, Vec3(1, 2, 3))}};
+  const Quat tilt(Eigen::AngleAxisd(0.7 * M_PI / 180.0, Vec3(0.0, 1.0, 0.0)));
+  StateEstimate first;
+  first.t = seconds_to_ns(0.5);
+  first.T_W_B = SE3(Quat(Eigen::AngleAxisd(-1.0, Vec3::UnitZ())) * tilt * q_gt, Vec3::Zero());
+  const SE3 T = first_state_transform(first, gt);
+  EXPECT_NEAR(yaw_of(T.q), 1.0, 2e-3);
+  const double error_rad = (T.q * first.T_W_B.q).angularDistance(q_gt);
+  EXPECT_NEAR(error_rad, 0.7 * M_PI / 180.0, 1e-4);
+}
+
 TEST(StartAlignment, NeesIsThreeWhenErrorsFollowTheCovarianceAndNotOtherwise) {
   const auto gt = circle();
   Mat3 P = Mat3::Zero();

@@ -52,6 +52,14 @@ inline constexpr double kUnregisteredHeightSigma = 100.0;
 // measured 0.025 rad of yaw error on lab-walk-1), and of its unused translation part.
 inline constexpr double kMagHeadingPriorSigma = 1.0;  // [rad]
 inline constexpr double kMagUnusedPriorSigma = 1.0;
+// Tracks two frames must share before their image motion says whether the camera stood still.
+inline constexpr std::size_t kMinStillTracks = 10;
+// A still start's accelerometer mean must be this close to gravity's magnitude [m/s^2] for a
+// re-initialization to use it (a walking user's mean is not gravity).
+inline constexpr double kStillGravityTolerance = 0.3;
+// The gyro-bias standard error of a still window: the sample standard deviation over sqrt(n),
+// times this for the vibration's correlation between samples.
+inline constexpr double kStillBiasErrorFactor = 2.0;
 // Iterations of a restarted window's solves (failure_recovery.cpp): small problems, far first guesses.
 inline constexpr int kRestartMaxIterations = 50;
 
@@ -61,6 +69,7 @@ struct WindowState {
   double pose[kPoseSize] = {0, 0, 0, 0, 0, 0, 1};
   double speed_bias[kSpeedBiasSize] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   bool keyframe = false;
+  bool still = false;  // its tracks stood still: a zero-velocity update holds v = 0
   std::optional<ImuPreintegration> imu;  // from the previous state of the window
   std::optional<GpsFix> gps;             // a fix taken at this state's time (within half a frame)
   std::optional<Vec3> mag_B;             // calibrated field at this state's time
@@ -170,6 +179,13 @@ struct SlidingWindowEstimator::Impl {
   FeatureTrackStore tracks;
   std::vector<ImuSample> imu;
   std::deque<FeatureFrame> pending;
+  // The frames of the last still_duration / zero-velocity look-back, for the stillness tests.
+  std::deque<FeatureFrame> recent_frames;
+  /// The camera stood still (its tracks' median motion at most max_px) over `span_s` before `frame`.
+  bool camera_still(const FeatureFrame& frame, double span_s, double max_px) const;
+  /// A still start can (re-)initialize at `frame` (IMU time t): the camera stood still over the
+  /// still window and the mean specific force there is gravity's magnitude.
+  bool still_start_possible(const FeatureFrame& frame, Timestamp t) const;
   std::shared_ptr<MarginalizationPrior> marginal_prior;
   std::shared_ptr<StatePriorFactor> state_prior;
   std::uint64_t state_prior_id = 0;
@@ -258,7 +274,9 @@ struct SlidingWindowEstimator::Impl {
   void slide_out_oldest();
   void reanchor_tracks_of(const WindowState& leaving);
   void trim_imu();
-  Mat15 initial_covariance(const Quat& q) const;
+  /// The first state's prior; `extra_sigma_roll_pitch` adds (in quadrature) what the data say
+  /// beyond the configured roll-pitch error (a vibrating still start's mean accelerometer).
+  Mat15 initial_covariance(const Quat& q, double extra_sigma_roll_pitch = 0.0) const;
 };
 
 }  // namespace navaid::estimation

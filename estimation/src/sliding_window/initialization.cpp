@@ -7,6 +7,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/initialization/visual_inertial_alignment.hpp"
 #include "navaid/estimation/initialization/window_sfm.hpp"
+#include "image_motion.hpp"
 #include "impl.hpp"
 
 namespace navaid::estimation {
@@ -27,15 +28,56 @@ StateEstimate SlidingWindowEstimator::Impl::initializing_estimate(Timestamp fram
   return e;
 }
 
+bool SlidingWindowEstimator::Impl::camera_still(const FeatureFrame& frame, double span_s, double max_px) const {
+  const std::optional<ImageMotion> m = image_motion_over(recent_frames, frame, span_s);
+  return m && m->common >= kMinStillTracks && m->median_px <= max_px;
+}
+
+bool SlidingWindowEstimator::Impl::still_start_possible(const FeatureFrame& frame, Timestamp t) const {
+  const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
+  if (imu.empty() || imu.front().t > t - still_ns || imu.back().t < t) return false;
+  if (!camera_still(frame, cfg.still_duration_s, cfg.still_max_motion_px)) return false;
+  Vec3 accel = Vec3::Zero();
+  const std::vector<ImuSample> samples = imu_samples_between(imu, t - still_ns, t);
+  for (const auto& s : samples) accel += s.accel;
+  accel /= static_cast<double>(samples.size());
+  return std::abs(accel.norm() - kGravityW.norm()) <= kStillGravityTolerance;
+}
+
 StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame, Timestamp t) {
   const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
   const std::vector<ImuSample> samples = imu_samples_between(imu, t - still_ns, t);
-  Vec3 accel = Vec3::Zero();
-  for (const auto& s : samples) accel += s.accel;
-  accel /= static_cast<double>(samples.size());
+  Vec3 accel = Vec3::Zero(), gyro = Vec3::Zero();
+  for (const auto& s : samples) accel += s.accel, gyro += s.gyro;
+  const double count = static_cast<double>(samples.size());
+  accel /= count;
+  gyro /= count;
   if (!(accel.norm() > 1.0))
     throw Error("estimator: the mean specific force of the still start is " + std::to_string(accel.norm()) +
                 " m/s^2; cannot find gravity");
+  // The mean's own error across gravity tilts roll and pitch: a vibrating platform (a MAV's
+  // motors, 0.2-1 m/s^2 of spread) measures gravity's direction to about a degree in 0.5 s.
+  Vec3 accel_spread = Vec3::Zero();
+  for (const auto& s : samples) accel_spread += (s.accel - accel).cwiseAbs2();
+  const Vec3 accel_error = samples.size() >= 2 ? Vec3((accel_spread / (count - 1.0)).cwiseSqrt() / std::sqrt(count) *
+                                                      kStillBiasErrorFactor)
+                                                : Vec3::Zero();
+  const Vec3 up = accel.normalized();
+  const double tilt_sigma = (accel_error - up * up.dot(accel_error)).norm() / accel.norm();
+  // A still window the camera confirms: the body did not turn, so the mean gyro is its bias (the
+  // earth's rate, <= 7.3e-5 rad/s, is below the error of the mean). Its error: the samples' spread
+  // (vibration included) over sqrt(n), never below white noise over the window.
+  Vec3 b_g = Vec3::Zero();
+  Vec3 sigma_b_g = Vec3::Constant(cfg.init_sigma_gyro_bias);
+  if (cfg.still_gyro_bias && samples.size() >= 2 && camera_still(frame, cfg.still_duration_s, cfg.still_max_motion_px)) {
+    Vec3 spread = Vec3::Zero();
+    for (const auto& s : samples) spread += (s.gyro - gyro).cwiseAbs2();
+    const Vec3 standard_error = (spread / (count - 1.0)).cwiseSqrt() / std::sqrt(count) * kStillBiasErrorFactor;
+    const double white = imu_noise.gyro_noise_density / std::sqrt(cfg.still_duration_s);
+    b_g = gyro;
+    sigma_b_g = standard_error.cwiseMax(white).cwiseMax(1e-6);
+    ++stats.still_gyro_bias_initializations;
+  }
   // At rest the accelerometer measures -g: R_W_B accel points up. Yaw is unobservable: 0.
   const Quat q_up = Quat::FromTwoVectors(accel, Vec3::UnitZ());
   const Vec3 rpy = rpy_from_quat(q_up);
@@ -46,8 +88,10 @@ StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame
   s->t = t;
   s->keyframe = true;
   pose_to_block(SE3(q, Vec3::Zero()), s->pose);
-  const Mat15 P0 = initial_covariance(q);
-  state_prior = std::make_shared<StatePriorFactor>(s->T_W_B(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), P0);
+  for (int i = 0; i < 3; ++i) s->speed_bias[3 + i] = b_g[i];
+  Mat15 P0 = initial_covariance(q, tilt_sigma);
+  P0.block<3, 3>(9, 9) = sigma_b_g.cwiseAbs2().asDiagonal();
+  state_prior = std::make_shared<StatePriorFactor>(s->T_W_B(), Vec3::Zero(), b_g, Vec3::Zero(), P0);
   state_prior_id = s->id;
   if (cfg.use_mag) {
     // Standing still, the mean field of the still start is the best first guess of psi.
@@ -62,6 +106,7 @@ StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame
   initialize_tracks();
   initialized = true;
   ++stats.keyframes;
+  stats.initialized_at_s = ns_to_seconds(t);
   return estimate_of(*window.back(), frame.t, EstimatorMode::kInitializing, P0);
 }
 

@@ -13,6 +13,7 @@
 #include "navaid/estimation/factors/magnetometer_yaw_factor.hpp"
 #include "navaid/estimation/factors/reprojection_factor.hpp"
 #include "navaid/estimation/factors/time_offset_factors.hpp"
+#include "navaid/estimation/factors/zero_velocity_factor.hpp"
 
 namespace navaid::estimation {
 
@@ -37,6 +38,7 @@ std::string factor_type(const ceres::CostFunction* c) {
   if (is<GpsPositionFactor>(c) || is<GpsPositionBiasFactor>(c)) return "gps";
   if (is<GaussMarkovFactor>(c)) return "gps_multipath";
   if (is<MagnetometerYawFactor>(c)) return "magnetometer";
+  if (is<ZeroVelocityFactor>(c)) return "zero_velocity";
   return "other";
 }
 

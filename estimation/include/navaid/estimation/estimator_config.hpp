@@ -73,6 +73,8 @@ struct EstimatorConfig {
   bool use_depth_3d = true;
   bool use_gps = false;
   bool use_mag = false;
+  /// Zero-velocity update (zero_velocity_factor.hpp) on frames whose tracks stood still.
+  bool use_zero_velocity = true;
   /// false: ignore every depth measurement (VIO): no depth factors, inverse depths triangulated.
   bool use_depth = true;
 
@@ -128,6 +130,20 @@ struct EstimatorConfig {
   double init_sigma_velocity = 0.02;   ///< [m/s]
   double init_sigma_gyro_bias = 0.01;  ///< [rad/s]
   double init_sigma_accel_bias = 0.1;  ///< [m/s^2]
+  /// still: when the camera confirms the still window (its tracks moved at most
+  /// still_max_motion_px, median), the mean gyro over it is the gyro bias, with the standard error
+  /// of that mean; otherwise the bias starts at 0 +- init_sigma_gyro_bias. A still start also
+  /// serves a re-initialization when the camera and the accelerometer say the user stands still.
+  bool still_gyro_bias = true;
+  double still_max_motion_px = 1.0;
+
+  // Zero-velocity update: the newest frame's tracks moved at most zero_velocity_max_motion_px
+  // (median) since the frame zero_velocity_lookback_s before it and the predicted speed is below
+  // zero_velocity_max_speed_mps: v = 0 +- zero_velocity_sigma_mps.
+  double zero_velocity_sigma_mps = 0.01;
+  double zero_velocity_max_motion_px = 1.0;
+  double zero_velocity_lookback_s = 0.25;
+  double zero_velocity_max_speed_mps = 0.3;
 
   // GPS (factors.gps): a fix joins the frame within this time of it; Huber threshold [sigma].
   double gps_max_time_offset_s = 0.02;

@@ -86,7 +86,11 @@ struct EstimatorStatistics {
   std::size_t initialization_attempts = 0;
   std::size_t initialization_failures = 0;
   std::string last_initialization_failure;
-  double initialized_at_s = -1;  ///< IMU-clock time of the initialization [s] (-1: not yet)
+  double initialized_at_s = -1;  ///< IMU-clock time of the (latest) initialization [s] (-1: not yet)
+  /// Still initializations that took the gyro bias from a still window the camera confirmed.
+  std::size_t still_gyro_bias_initializations = 0;
+  /// Frames that got a zero-velocity update (their tracks stood still).
+  std::size_t zero_velocity_frames = 0;
   /// Failure detection (estimator.failure.*): solves found implausible, the last reason (with its
   /// time), window restarts from the last good estimate (map frame kept) and re-initializations
   /// in a new map frame (W moved: consumers must drop what they built in the old one).
