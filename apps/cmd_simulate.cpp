@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <fstream>
+#include <utility>
 #include <memory>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,8 @@
 #include "commands.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/io/euroc.hpp"
+#include "navaid/simulation/recorded_motion.hpp"
 #include "navaid/simulation/simulator.hpp"
 #include "navaid/experiments/progress.hpp"
 
@@ -24,7 +27,7 @@ namespace {
 struct SimulateArgs {
   std::string scenario, mount;
   std::optional<long long> seed;
-  std::filesystem::path out, config_file, cache;
+  std::filesystem::path out, config_file, cache, from_recording, imu_calibration, camera_calibration;
   std::vector<std::string> overrides;
   int threads = 0;
   bool overwrite = false, list = false;
@@ -73,9 +76,67 @@ nlohmann::ordered_json summary_json(const simulation::SimulationConfig& c, const
   return j;
 }
 
+// --from-recording: the folder's real IMU and ground truth, its camera simulated in a world around
+// the flight (the flight room unless --scenario names one).
+void run_from_recording(const SimulateArgs& a, const Config& config) {
+  namespace fs = std::filesystem;
+  for (const auto& [flag, file] : {std::pair{"--imu-calibration", a.imu_calibration}, {"--camera-calibration", a.camera_calibration}})
+    if (!file.empty() && !fs::is_regular_file(file)) throw UsageError(std::string(flag) + " " + file.string() + ": no such file");
+  const fs::path mav0 = fs::is_directory(a.from_recording / "mav0") ? a.from_recording / "mav0" : a.from_recording;
+  if (a.imu_calibration.empty() && fs::is_directory(mav0 / "imu0") && !fs::is_regular_file(mav0 / "imu0" / "sensor.yaml"))
+    throw UsageError((mav0 / "imu0").string() +
+                     " has no sensor.yaml (the IMU's noise model): pass --imu-calibration with the sensor.yaml of the same "
+                     "IMU (for euroc-V1_02-imu, euroc-V1_01-micro's mav0/imu0/sensor.yaml)");
+  const io::Recording source =
+      io::read_euroc(a.from_recording, a.imu_calibration.empty() ? std::nullopt : std::optional(a.imu_calibration));
+  if (source.groundtruth.size() < 2)
+    throw UsageError(a.from_recording.string() + " has no ground truth (state_groundtruth_estimate0/data.csv) to fly along");
+  const simulation::RecordedMotion motion(source.groundtruth);
+  const simulation::Scenario scenario =
+      config.has("scenario")
+          ? simulation::make_scenario(simulation::read_scenario_name(config), simulation::read_scenario_options(config))
+          : simulation::make_flight_room(motion.bounds(),
+                                         static_cast<std::uint64_t>(config.get_int("simulation.world_seed", 1, 1, 1LL << 62)));
+  simulation::SimulationConfig sim = simulation::read_simulation_config(config, scenario);
+  config.reject_unknown_keys();
+  sim.imu = *source.calibration.imu;  // the real IMU's own noise model
+  if (!a.camera_calibration.empty()) {
+    sim.camera = io::read_euroc_camera_yaml(a.camera_calibration, "cam0");
+  } else if (!source.calibration.cameras.empty()) {
+    sim.camera = source.calibration.cameras.front();  // the folder's own camera (no depth: VIO)
+    sim.camera.name = "cam0";
+  } else {
+    spdlog::warn("{} has no camera calibration: simulating the {} camera at its {} mount (pass --camera-calibration "
+                 "for the recording rig's own camera)",
+                 a.from_recording.string(), sim.sensor_preset, sim.mount.name);
+  }
+  simulation::SimulateOptions options;
+  options.threads = a.threads;
+  options.overwrite = a.overwrite;
+  spdlog::info("simulating the camera of {} in {}, seed {}", a.from_recording.string(), scenario.name, sim.seed);
+  const auto summary = simulation::simulate_recorded_motion(scenario, sim, source, a.out, options);
+  std::ofstream(a.out / "simulation.yaml") << config.dump();
+  auto json = summary_json(sim, summary);
+  json["scenario"] = scenario.name;
+  json["from_recording"] = std::filesystem::absolute(a.from_recording).string();
+  std::ofstream(a.out / "summary.json") << json.dump(2) << "\n";
+  std::cout << fmt::format(
+      "wrote {}: the real IMU and ground truth of {} with a simulated {}x{} camera in {} ({}), {:.1f} s, {:.1f} m "
+      "flown; {} imu, {} {}\n",
+      a.out.string(), a.from_recording.string(), sim.camera.width, sim.camera.height, scenario.name,
+      json["mode"].get<std::string>(), summary.duration_s, summary.walked_m, summary.imu, summary.frames,
+      sim.mode == simulation::SimulationMode::kImages ? "frames" : "feature frames");
+}
+
 void run(const SimulateArgs& a) {
   if (a.list) return list_scenarios();
   if (a.out.empty()) throw UsageError("--out is required");
+  if (a.from_recording.empty() && (!a.imu_calibration.empty() || !a.camera_calibration.empty()))
+    throw UsageError("--imu-calibration and --camera-calibration go with --from-recording");
+  if (!a.from_recording.empty()) {
+    if (!a.mount.empty()) throw UsageError("--mount does not apply to --from-recording: the recording's motion is kept");
+    return run_from_recording(a, build_config(a));
+  }
   const Config config = build_config(a);
   const std::string name = simulation::read_scenario_name(config);
   const simulation::Scenario scenario = simulation::make_scenario(name, simulation::read_scenario_options(config));
@@ -120,6 +181,12 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--out", a->out, "Output folder for the recording");
   cmd->add_option("--config", a->config_file, "YAML configuration file (docs/simulate.md)")->check(CLI::ExistingFile);
   cmd->add_option("--set", a->overrides, "Override a configuration key, e.g. --set sensor.imu.rate=400 (repeatable)");
+  cmd->add_option("--from-recording", a->from_recording,
+                  "EuRoC/ASL folder: keep its real IMU and ground truth, simulate only its camera (docs/simulate.md)");
+  cmd->add_option("--imu-calibration", a->imu_calibration,
+                  "With --from-recording: an EuRoC imu sensor.yaml for a folder without one");
+  cmd->add_option("--camera-calibration", a->camera_calibration,
+                  "With --from-recording: an EuRoC camera sensor.yaml to simulate instead of the folder's cam0");
   cmd->add_option("--cache", a->cache, "Render cache folder: noise-free frames re-used across seeds");
   cmd->add_option("--threads", a->threads, "Frame workers (default: all cores); the output does not depend on it")
       ->check(CLI::NonNegativeNumber);

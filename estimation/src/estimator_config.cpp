@@ -58,6 +58,8 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.window_size = static_cast<int>(c.get_int("estimator.window_size", e.window_size, 2, 100));
 
   e.use_imu = c.get_bool("estimator.factors.imu", e.use_imu);
+  e.imu_noise_scale = c.get_double("estimator.imu.noise_scale", e.imu_noise_scale, {1e-3, 1e3});
+  e.imu_random_walk_scale = c.get_double("estimator.imu.random_walk_scale", e.imu_random_walk_scale, {1e-3, 1e3});
   e.use_reprojection = c.get_bool("estimator.factors.reprojection", e.use_reprojection);
   e.use_inverse_depth = c.get_bool("estimator.factors.inverse_depth", e.use_inverse_depth);
   e.use_depth_3d = c.get_bool("estimator.factors.depth_3d", e.use_depth_3d);

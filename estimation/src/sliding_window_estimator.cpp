@@ -84,6 +84,11 @@ SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorCon
   camera_model = make_camera_model(camera, "calibration");
   if (!rig.imu) throw ConfigError("calibration", "imu", "the estimator needs an IMU calibration");
   imu_noise = ImuNoise::from(*rig.imu);
+  // A real IMU on a vibrating platform is noisier than its datasheet (docs/estimator.md).
+  imu_noise.gyro_noise_density *= cfg.imu_noise_scale;
+  imu_noise.accel_noise_density *= cfg.imu_noise_scale;
+  imu_noise.gyro_random_walk *= cfg.imu_random_walk_scale;
+  imu_noise.accel_random_walk *= cfg.imu_random_walk_scale;
   validate(imu_noise, "calibration: imu");
   focal_px = std::sqrt(camera.fx * camera.fy);
   camera_to_imu_ns = static_cast<Timestamp>(std::llround(camera.time_offset_s * 1e9));
@@ -359,7 +364,8 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
   }
   for (auto& s : window)
     if (s->still && cfg.use_imu)
-      out.push_back({std::make_shared<ZeroVelocityFactor>(cfg.zero_velocity_sigma_mps), nullptr, {s->speed_bias}});
+      out.push_back({std::make_shared<ZeroVelocityFactor>(cfg.zero_velocity_sigma_mps, s->still->mean, s->still->sigma),
+                     nullptr, {s->speed_bias}});
   if (marginal_prior && !marginal_prior->empty())
     out.push_back({std::make_shared<MarginalizationFactor>(marginal_prior), nullptr, marginal_prior->blocks});
   if (state_prior) {
@@ -742,11 +748,12 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
   pose_to_block(T, s->pose);
   s->speed_bias[0] = v.x(), s->speed_bias[1] = v.y(), s->speed_bias[2] = v.z();
   for (int i = 3; i < kSpeedBiasSize; ++i) s->speed_bias[i] = last_kf.speed_bias[i];
-  // Zero velocity when the tracks stood still over the look-back and the IMU does not say the
-  // user is moving (a far scene seen straight ahead barely moves in the image on a slow step).
-  s->still = cfg.use_zero_velocity && cfg.use_imu && s->v().norm() <= cfg.zero_velocity_max_speed_mps &&
-             camera_still(frame, cfg.zero_velocity_lookback_s, cfg.zero_velocity_max_motion_px);
-  stats.zero_velocity_frames += s->still;
+  // Zero velocity when the tracks stood still over the look-back and the predicted speed is low (a
+  // far scene seen straight ahead barely moves in the image on a slow step; and the IMU sees a
+  // start before the image does).
+  if (cfg.use_zero_velocity && cfg.use_imu && s->v().norm() <= cfg.zero_velocity_max_speed_mps)
+    s->still = still_gyro(frame, t, cfg.zero_velocity_lookback_s, cfg.zero_velocity_max_motion_px);
+  stats.zero_velocity_frames += s->still.has_value();
   window.push_back(std::move(s));
   WindowState& newest = *window.back();
   add_observations(newest.id, frame);
@@ -764,7 +771,14 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
 StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& frame, bool keyframe) {
   WindowState& newest = *window.back();
   const Timestamp t = newest.t;
+  // Tracks that get their first depth now: the failure test does not judge vision by them until a
+  // whole-window solve has estimated their depth (a track triangulated from the first centimetres
+  // of a start does not fit a newest-only solve, which holds it).
+  for (auto& [id, track] : tracks.tracks())
+    if (!track.initialized) fresh_landmarks.insert(track.landmark), fresh_landmarks.insert(&track.inverse_depth());
   initialize_tracks();
+  for (auto& [id, track] : tracks.tracks())
+    if (!track.initialized) fresh_landmarks.erase(track.landmark), fresh_landmarks.erase(&track.inverse_depth());
 
   std::optional<NewestCovariance> c;
   // A non-keyframe is dropped after its solve: with non_keyframes=newest it moves alone (a restarted
@@ -772,6 +786,7 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   const bool newest_only = !keyframe && cfg.non_keyframe_solve == NonKeyframeSolve::kNewest && gaussian_solves == 0;
   const auto solve_start = std::chrono::steady_clock::now();
   const VisualCount count = solve(cfg.covariance_method != CovarianceMethod::kOff ? &c : nullptr, newest_only);
+  if (!newest_only) fresh_landmarks.clear();
   frame_stages.solve_ms += ms_since(solve_start) - frame_stages.covariance_ms;
   remove_failed_tracks();
   if (cfg.use_gps && cfg.gps_mode == GpsMode::kJoint) register_gps(newest);
@@ -780,7 +795,7 @@ StateEstimate SlidingWindowEstimator::Impl::solve_newest(const FeatureFrame& fra
   EstimatorMode mode;
   // Standing still, the tracks have no parallax to triangulate, but they confirm the stillness
   // that the zero-velocity update holds: vision still supports the state.
-  const bool seen_still = newest.still && frame.features.size() >= static_cast<std::size_t>(cfg.min_visual_features);
+  const bool seen_still = newest.still.has_value() && frame.features.size() >= static_cast<std::size_t>(cfg.min_visual_features);
   if (count.features < static_cast<std::size_t>(cfg.min_visual_features) && !seen_still) {
     if (!imu_only_since) imu_only_since = t;
     mode = ns_to_seconds(t - *imu_only_since) > cfg.lost_after_s ? EstimatorMode::kLost : EstimatorMode::kImuOnly;

@@ -204,7 +204,16 @@ std::string run_recording(const RecordingRunOptions& a) {
   std::size_t camera_frames = 0;
   bool any_depth = false;
   if (input == Input::kFeatures) {
-    for (const auto& f : recording.features) camera_frames += f.camera == camera;
+    for (const auto& f : recording.features)
+      if (f.camera == camera) {
+        ++camera_frames;
+        for (const auto& o : f.features) any_depth = any_depth || o.depth_m.has_value();
+      }
+    if (!any_depth && est_config.use_depth) {
+      // No observation has a depth (a camera without a depth sensor): VIO, as for images below.
+      spdlog::info("{}: no feature has a depth: running as VIO", a.recording.string());
+      est_config.use_depth = false;
+    }
   } else {
     for (const auto& f : recording.frames)
       if (f.camera == camera) {

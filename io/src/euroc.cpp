@@ -133,7 +133,7 @@ ImuCalibration read_euroc_imu_yaml(const fs::path& path) {
   return imu;
 }
 
-Recording read_euroc(const fs::path& folder) {
+Recording read_euroc(const fs::path& folder, const std::optional<fs::path>& imu_calibration) {
   const fs::path mav0 = find_mav0(folder);
   Recording recording;
   recording.path = folder.string();
@@ -143,7 +143,7 @@ Recording read_euroc(const fs::path& folder) {
     throw IoError(mav0.string(), "no imu0/ or cam0/ sensor folder");
 
   if (fs::is_directory(mav0 / "imu0", ec)) {
-    recording.calibration.imu = read_euroc_imu_yaml(mav0 / "imu0" / "sensor.yaml");
+    recording.calibration.imu = read_euroc_imu_yaml(imu_calibration ? *imu_calibration : mav0 / "imu0" / "sensor.yaml");
     recording.imu = read_imu_csv(mav0 / "imu0" / "data.csv");
   }
 

@@ -8,6 +8,9 @@
 #include <cmath>
 #include <exception>
 #include <fstream>
+#include <functional>
+#include <limits>
+#include <random>
 #include <mutex>
 #include <thread>
 
@@ -18,6 +21,7 @@
 #include "navaid/io/targets_csv.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/simulation/frame_rng.hpp"
+#include "navaid/simulation/recorded_motion.hpp"
 #include "navaid/simulation/render_cache.hpp"
 #include "navaid/simulation/sensor_streams.hpp"
 #include "navaid/simulation/time_grid.hpp"
@@ -55,13 +59,23 @@ std::string image_name(const char* folder, const std::string& camera, Timestamp 
 
 // The image-mode frame stage: render (or load from the cache), add noise and label confusion,
 // write the PNGs into the output folder. Frames are independent, so workers take them in any order.
+// The body's pose at time t_s since the motion's epoch (a simulated walk's trajectory time, or
+// the seconds since a recording's first sample).
+using BodyPose = std::function<SE3(double t_s)>;
+
+// Camera stamps of frames taken at `rel` after `epoch` (IMU clock): the camera clock's.
+Timestamp frame_stamp(const SimulationConfig& config, Timestamp epoch, Timestamp rel) {
+  return camera_stamp(config, rel) - kSimulationEpoch + epoch;
+}
+
 struct FrameStage {
   const Scenario& scenario;
   const SimulationConfig& config;
-  const WalkerTrajectory& trajectory;
+  const BodyPose& body_pose;
+  Timestamp epoch;
   const RayCaster& world;
   const fs::path& out;
-  const std::vector<Timestamp>& times;  // relative to the trajectory's t = 0
+  const std::vector<Timestamp>& times;  // relative to the epoch
   std::optional<RenderCache> cache;
   double depth_unit_m;
   LabelConfusionModel confusion;
@@ -105,7 +119,7 @@ struct FrameStage {
 
   void process(std::size_t i, const RgbdRenderer& renderer, RenderedFrame& clean) {
     const double t_s = ns_to_seconds(times[i]);
-    const SE3 T_W_C = trajectory.state(t_s).T_W_B * config.camera.T_B_C;
+    const SE3 T_W_C = body_pose(t_s) * config.camera.T_B_C;
     if (cache && cache->has(i)) {
       clean = cache->load(i);
     } else {
@@ -119,7 +133,7 @@ struct FrameStage {
     const LabelPrediction labels = confusion.apply(clean.labels, config.seed, i);
 
     RgbdFrame f;
-    f.t = camera_stamp(config, times[i]);
+    f.t = frame_stamp(config, epoch, times[i]);
     f.index = i;
     f.camera = config.camera.name;
     f.intensity_path = (out / image_name("rgb", f.camera, f.t)).string();
@@ -138,7 +152,7 @@ struct FrameStage {
 };
 
 std::vector<FeatureFrame> simulate_features(const Scenario& scenario, const SimulationConfig& config,
-                                            const WalkerTrajectory& trajectory, const RayCaster& world,
+                                            const BodyPose& body_pose, Timestamp epoch, const RayCaster& world,
                                             const std::vector<Timestamp>& times, const std::vector<Landmark>& landmarks,
                                             const SimulateOptions& options) {
   const auto camera = make_camera_model(config.camera, "sensor.camera");
@@ -148,9 +162,9 @@ std::vector<FeatureFrame> simulate_features(const Scenario& scenario, const Simu
   frames.reserve(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) {
     const double t_s = ns_to_seconds(times[i]);
-    const SE3 T_W_C = trajectory.state(t_s).T_W_B * config.camera.T_B_C;
+    const SE3 T_W_C = body_pose(t_s) * config.camera.T_B_C;
     const auto moving = moving_caster(scenario, t_s, T_W_C.t);
-    FeatureFrame f = observer.observe(camera_stamp(config, times[i]), T_W_C, rng, moving ? &*moving : nullptr);
+    FeatureFrame f = observer.observe(frame_stamp(config, epoch, times[i]), T_W_C, rng, moving ? &*moving : nullptr);
     frames.push_back(std::move(f));  // also when empty: the camera saw nothing it could track
     if (options.on_frame) options.on_frame(i + 1, times.size());
   }
@@ -176,6 +190,46 @@ void write_top_view(const Scenario& scenario, const RayCaster& world, const std:
   io::write_png(file.string(), render_top_view(world, scenario_map_options(scenario, std::min(1200.0, width_m / 0.02), &walked)).image, 6);
 }
 
+// Refuses a non-empty folder unless overwriting; creates it.
+void prepare_output(const fs::path& out, const SimulateOptions& options) {
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !options.overwrite)
+    throw UsageError(out.string() + " exists and is not empty; pass --overwrite to replace its recording files");
+  fs::create_directories(out, ec);
+  if (ec) throw IoError(out.string(), "cannot create the output folder: " + ec.message());
+  if (options.overwrite)  // images of an earlier run would otherwise stay beside the new ones
+    for (const char* folder : {"rgb", "depth", "labels", "confidence"}) fs::remove_all(out / folder, ec);
+}
+
+// Writes the recording with its ground truth as TUM, the targets and the top view; fills the
+// summary's counts.
+void finish_recording(const Scenario& scenario, const RayCaster& world, const SimulationConfig& config,
+                      const io::Recording& rec, const fs::path& out, SimulationSummary& summary) {
+  io::NavaidWriteOptions write_options;
+  write_options.overwrite = true;  // the folder was checked above; it now holds our own images
+  write_options.images_in_place = true;
+  io::write_navaid_recording(rec, out, write_options);
+
+  // Ground truth of the tagged target objects (hand guidance); only scenarios that have them.
+  write_scenario_targets(scenario, out / io::kTargetsCsv);
+
+  std::vector<io::StampedPose> poses;
+  poses.reserve(rec.groundtruth.size());
+  for (const auto& g : rec.groundtruth) poses.push_back({g.t, g.T_W_B});
+  io::write_tum_trajectory(out / "groundtruth.tum", poses);
+
+  std::vector<Vec2> walked;
+  for (std::size_t i = 0; i < rec.groundtruth.size(); i += 10) walked.push_back(rec.groundtruth[i].T_W_B.t.head<2>());
+  write_top_view(scenario, world, walked, out / "topview.png");
+
+  summary.imu = rec.imu.size();
+  summary.frames = config.mode == SimulationMode::kImages ? rec.frames.size() : rec.features.size();
+  summary.gps = rec.gps.size();
+  summary.mag = rec.mag.size();
+  summary.groundtruth = rec.groundtruth.size();
+  summary.landmarks = rec.landmarks.size();
+}
+
 }  // namespace
 
 void write_scenario_targets(const Scenario& scenario, const fs::path& file) {
@@ -192,15 +246,12 @@ void write_scenario_targets(const Scenario& scenario, const fs::path& file) {
 
 SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& config, const fs::path& out,
                            const SimulateOptions& options) {
-  std::error_code ec;
-  if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !options.overwrite)
-    throw UsageError(out.string() + " exists and is not empty; pass --overwrite to replace its recording files");
-  fs::create_directories(out, ec);
-  if (ec) throw IoError(out.string(), "cannot create the output folder: " + ec.message());
+  prepare_output(out, options);
 
   WalkerConfig walker = config.walker;
   walker.ground_z_m = scenario.ground_z_m;
   const WalkerTrajectory trajectory(scenario.path, walker);
+  const BodyPose body_pose = [&trajectory](double t_s) { return trajectory.state(t_s).T_W_B; };
   const double t_begin = -config.still_time_s;
   const double t_end = config.duration_s > 0 ? std::min(t_begin + config.duration_s, trajectory.duration()) : trajectory.duration();
   const RayCaster world(scenario.world);
@@ -225,12 +276,10 @@ SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& con
 
   // Camera: images or feature observations.
   const std::vector<Timestamp> frame_times = time_grid(t_begin, t_end, config.camera.rate_hz);
-  if (options.overwrite)  // images of an earlier run would otherwise stay beside the new ones
-    for (const char* folder : {"rgb", "depth", "labels", "confidence"}) fs::remove_all(out / folder, ec);
   const auto frames_start = std::chrono::steady_clock::now();
   if (config.mode == SimulationMode::kImages) {
     const double unit = cache_depth_unit_m(config.render.max_depth);
-    FrameStage stage{scenario, config, trajectory, world, out, frame_times, std::nullopt, unit,
+    FrameStage stage{scenario,    config, body_pose, kSimulationEpoch, world, out, frame_times, std::nullopt, unit,
                      LabelConfusionModel(config.label_confusion), {}, {}, {}};
     if (options.cache_dir) stage.cache.emplace(*options.cache_dir, render_key(scenario, config, frame_times), unit);
     stage.run(options);
@@ -240,7 +289,7 @@ SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& con
     for (double v : stage.valid_fraction) summary.valid_depth_fraction += v / static_cast<double>(stage.valid_fraction.size());
   } else {
     rec.landmarks = generate_landmarks(world, trajectory, config.features, scenario.seed);
-    rec.features = simulate_features(scenario, config, trajectory, world, frame_times, rec.landmarks, options);
+    rec.features = simulate_features(scenario, config, body_pose, kSimulationEpoch, world, frame_times, rec.landmarks, options);
     std::size_t with_depth = 0;
     for (const auto& f : rec.features) {
       summary.observations += f.features.size();
@@ -274,29 +323,72 @@ SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& con
       rec.mag.push_back(model.measure(kSimulationEpoch + rel, SE3::identity(), trajectory.state(ns_to_seconds(rel)).T_W_B));
   }
 
-  io::NavaidWriteOptions write_options;
-  write_options.overwrite = true;  // the folder was checked above; it now holds our own images
-  write_options.images_in_place = true;
-  io::write_navaid_recording(rec, out, write_options);
+  finish_recording(scenario, world, config, rec, out, summary);
+  return summary;
+}
 
-  // Ground truth of the tagged target objects (hand guidance); only scenarios that have them.
-  write_scenario_targets(scenario, out / io::kTargetsCsv);
+SimulationSummary simulate_recorded_motion(const Scenario& scenario, const SimulationConfig& config,
+                                           const io::Recording& source, const fs::path& out,
+                                           const SimulateOptions& options) {
+  if (source.imu.empty()) throw UsageError("the recording has no IMU samples to keep");
+  if (source.groundtruth.size() < 2) throw UsageError("the recording has no ground-truth trajectory to fly the camera along");
+  const RecordedMotion motion(source.groundtruth);
+  const Timestamp begin = std::max(source.imu.front().t, motion.begin());
+  Timestamp end = std::min(source.imu.back().t, motion.end());
+  if (config.duration_s > 0) end = std::min(end, begin + seconds_to_ns(config.duration_s));
+  if (!(end > begin)) throw UsageError("the recording's IMU samples and ground truth do not overlap in time");
+  prepare_output(out, options);
 
-  std::vector<io::StampedPose> poses;
-  poses.reserve(rec.groundtruth.size());
-  for (const auto& g : rec.groundtruth) poses.push_back({g.t, g.T_W_B});
-  io::write_tum_trajectory(out / "groundtruth.tum", poses);
+  SimulationSummary summary;
+  summary.duration_s = ns_to_seconds(end - begin);
+  io::Recording rec;
+  rec.format = "navaid";
+  rec.origin = scenario.origin;
+  rec.calibration.cameras = {config.camera};
+  rec.calibration.imu = config.imu;
+  for (const ImuSample& m : source.imu)
+    if (m.t >= begin && m.t <= end) rec.imu.push_back(m);
+  for (const GroundTruthState& g : source.groundtruth)
+    if (g.t >= begin && g.t <= end) rec.groundtruth.push_back(g);
+  for (std::size_t i = 1; i < rec.groundtruth.size(); ++i)
+    summary.walked_m += (rec.groundtruth[i].T_W_B.t - rec.groundtruth[i - 1].T_W_B.t).norm();
+  summary.path_length_m = summary.walked_m;
 
-  std::vector<Vec2> walked;
-  for (std::size_t i = 0; i < rec.groundtruth.size(); i += 10) walked.push_back(rec.groundtruth[i].T_W_B.t.head<2>());
-  write_top_view(scenario, world, walked, out / "topview.png");
-
-  summary.imu = rec.imu.size();
-  summary.frames = config.mode == SimulationMode::kImages ? rec.frames.size() : rec.features.size();
-  summary.gps = rec.gps.size();
-  summary.mag = rec.mag.size();
-  summary.groundtruth = rec.groundtruth.size();
-  summary.landmarks = rec.landmarks.size();
+  const RayCaster world(scenario.world);
+  const BodyPose body_pose = [&motion, begin](double t_s) { return motion.pose_at(begin + seconds_to_ns(t_s)); };
+  const std::vector<Timestamp> frame_times = time_grid(0.0, ns_to_seconds(end - begin), config.camera.rate_hz);
+  const auto frames_start = std::chrono::steady_clock::now();
+  if (config.mode == SimulationMode::kImages) {
+    const double unit = cache_depth_unit_m(config.render.max_depth);
+    FrameStage stage{scenario,    config, body_pose, begin, world, out, frame_times, std::nullopt, unit,
+                     LabelConfusionModel(config.label_confusion), {}, {}, {}};
+    stage.run(options);
+    rec.frames = std::move(stage.frames);
+    write_confusion_matrix(out / "label_confusion.csv", stage.confusion.matrix());
+    summary.rendered_frames = stage.rendered;
+    for (double v : stage.valid_fraction) summary.valid_depth_fraction += v / static_cast<double>(stage.valid_fraction.size());
+  } else {
+    // Landmarks seeded from the flown positions themselves (the body flies where it looks from).
+    std::mt19937_64 rng(scenario.seed);
+    std::normal_distribution<double> normal;
+    double since_last = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < rec.groundtruth.size(); ++i) {
+      if (i > 0) since_last += (rec.groundtruth[i].T_W_B.t - rec.groundtruth[i - 1].T_W_B.t).norm();
+      if (since_last < config.features.landmark_spacing_m && i + 1 < rec.groundtruth.size()) continue;
+      seed_landmarks_from(world, rec.groundtruth[i].T_W_B.t, config.features, rng, normal, rec.landmarks);
+      since_last = 0;
+    }
+    rec.features = simulate_features(scenario, config, body_pose, begin, world, frame_times, rec.landmarks, options);
+    std::size_t with_depth = 0;
+    for (const auto& f : rec.features) {
+      summary.observations += f.features.size();
+      for (const auto& o : f.features) with_depth += o.depth_m.has_value();
+    }
+    summary.depth_observation_fraction =
+        summary.observations > 0 ? static_cast<double>(with_depth) / static_cast<double>(summary.observations) : 0.0;
+  }
+  summary.frames_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frames_start).count();
+  finish_recording(scenario, world, config, rec, out, summary);
   return summary;
 }
 

@@ -7,7 +7,7 @@
 namespace navaid::estimation::sliding_window {
 
 ImageMotion image_motion(const FeatureFrame& from, const FeatureFrame& to) {
-  std::vector<double> moved;
+  std::vector<double> moved, du, dv;
   auto a = from.features.begin();
   auto b = to.features.begin();
   while (a != from.features.end() && b != to.features.end()) {
@@ -16,16 +16,23 @@ ImageMotion image_motion(const FeatureFrame& from, const FeatureFrame& to) {
     } else if (b->track_id < a->track_id) {
       ++b;
     } else {
-      moved.push_back((b->uv - a->uv).norm());
+      const Eigen::Vector2d d = b->uv - a->uv;
+      moved.push_back(d.norm());
+      du.push_back(d.x());
+      dv.push_back(d.y());
       ++a, ++b;
     }
   }
   ImageMotion m;
   m.common = moved.size();
   if (moved.empty()) return m;
-  const auto mid = moved.begin() + static_cast<std::ptrdiff_t>(moved.size() / 2);
-  std::nth_element(moved.begin(), mid, moved.end());
-  m.median_px = *mid;
+  const auto median = [](std::vector<double>& x) {
+    const auto mid = x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2);
+    std::nth_element(x.begin(), mid, x.end());
+    return *mid;
+  };
+  m.median_px = median(moved);
+  m.shift_px = std::hypot(median(du), median(dv));
   return m;
 }
 

@@ -12,8 +12,16 @@
 namespace navaid::estimation::sliding_window {
 
 struct ImageMotion {
-  std::size_t common = 0;                                   ///< tracks both frames observe
-  double median_px = std::numeric_limits<double>::quiet_NaN();  ///< median displacement [px]
+  std::size_t common = 0;                                       ///< tracks both frames observe
+  double median_px = std::numeric_limits<double>::quiet_NaN();  ///< median |displacement| [px]
+  /// |component-wise median displacement| [px]: the coherent shift a turn gives every track,
+  /// known to ~1.25 sigma / sqrt(common) however noisy each track is.
+  double shift_px = std::numeric_limits<double>::quiet_NaN();
+  /// Stood still: no coherent shift beyond `max_px` and a median displacement within `max_px`
+  /// plus what pixel noise of `pixel_sigma` alone gives (2 sigma, above noise's 1.66 sigma median).
+  bool still(std::size_t min_common, double max_px, double pixel_sigma) const {
+    return common >= min_common && shift_px <= max_px && median_px <= max_px + 2.0 * pixel_sigma;
+  }
 };
 
 /// Both frames' features must have strictly increasing track ids (FeatureFrame's contract).

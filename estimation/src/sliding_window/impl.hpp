@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 #include <string>
 #include <vector>
 
@@ -63,13 +64,19 @@ inline constexpr double kStillBiasErrorFactor = 2.0;
 // Iterations of a restarted window's solves (failure_recovery.cpp): small problems, far first guesses.
 inline constexpr int kRestartMaxIterations = 50;
 
+// The gyro over a stretch the camera saw still: its mean is the bias, to within sigma.
+struct StillGyro {
+  Vec3 mean = Vec3::Zero();
+  Vec3 sigma = Vec3::Zero();
+};
+
 struct WindowState {
   std::uint64_t id = 0;
   Timestamp t = 0;  // IMU clock
   double pose[kPoseSize] = {0, 0, 0, 0, 0, 0, 1};
   double speed_bias[kSpeedBiasSize] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   bool keyframe = false;
-  bool still = false;  // its tracks stood still: a zero-velocity update holds v = 0
+  std::optional<StillGyro> still;  // its tracks stood still: a zero-velocity update holds v = 0, b_g = mean
   std::optional<ImuPreintegration> imu;  // from the previous state of the window
   std::optional<GpsFix> gps;             // a fix taken at this state's time (within half a frame)
   std::optional<Vec3> mag_B;             // calibrated field at this state's time
@@ -181,8 +188,12 @@ struct SlidingWindowEstimator::Impl {
   std::deque<FeatureFrame> pending;
   // The frames of the last still_duration / zero-velocity look-back, for the stillness tests.
   std::deque<FeatureFrame> recent_frames;
-  /// The camera stood still (its tracks' median motion at most max_px) over `span_s` before `frame`.
-  bool camera_still(const FeatureFrame& frame, double span_s, double max_px) const;
+  // Landmark blocks of the tracks first initialized for the frame being solved.
+  std::unordered_set<const double*> fresh_landmarks;
+  /// The camera stood still (image_motion.hpp) over `span_s` before `frame` (IMU time t): the
+  /// gyro's mean and its error over that span (the samples' spread over sqrt(n), never below white
+  /// noise, and the turn the image saw); none when the camera moved or the IMU does not cover it.
+  std::optional<StillGyro> still_gyro(const FeatureFrame& frame, Timestamp t, double span_s, double max_px) const;
   /// A still start can (re-)initialize at `frame` (IMU time t): the camera stood still over the
   /// still window and the mean specific force there is gravity's magnitude.
   bool still_start_possible(const FeatureFrame& frame, Timestamp t) const;

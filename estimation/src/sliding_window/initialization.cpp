@@ -28,15 +28,35 @@ StateEstimate SlidingWindowEstimator::Impl::initializing_estimate(Timestamp fram
   return e;
 }
 
-bool SlidingWindowEstimator::Impl::camera_still(const FeatureFrame& frame, double span_s, double max_px) const {
-  const std::optional<ImageMotion> m = image_motion_over(recent_frames, frame, span_s);
-  return m && m->common >= kMinStillTracks && m->median_px <= max_px;
+std::optional<StillGyro> SlidingWindowEstimator::Impl::still_gyro(const FeatureFrame& frame, Timestamp t, double span_s,
+                                                                  double max_px) const {
+  const std::optional<ImageMotion> motion = image_motion_over(recent_frames, frame, span_s);
+  if (!motion || !motion->still(kMinStillTracks, max_px, cfg.pixel_sigma_px)) return std::nullopt;
+  const Timestamp span = static_cast<Timestamp>(std::llround(span_s * 1e9));
+  if (imu.empty() || imu.front().t > t - span || imu.back().t < t) return std::nullopt;
+  const std::vector<ImuSample> samples = imu_samples_between(imu, t - span, t);
+  if (samples.size() < 2) return std::nullopt;
+  const double n = static_cast<double>(samples.size());
+  StillGyro g;
+  for (const auto& s : samples) g.mean += s.gyro;
+  g.mean /= n;
+  Vec3 spread = Vec3::Zero();
+  for (const auto& s : samples) spread += (s.gyro - g.mean).cwiseAbs2();
+  // The body did not turn, so the mean gyro is the bias (the earth's rate, <= 7.3e-5 rad/s, is
+  // below the error of the mean). Its error: the samples' spread (vibration included) over sqrt(n)
+  // times kStillBiasErrorFactor, never below white noise over the span, and the turn the image saw
+  // (its tracks' coherent shift, at least that shift's own error of ~0.1 px).
+  const Vec3 standard_error = (spread / (n - 1.0)).cwiseSqrt() / std::sqrt(n) * kStillBiasErrorFactor;
+  const double white = imu_noise.gyro_noise_density / std::sqrt(span_s);
+  const double seen_turn = std::max(motion->shift_px, 0.1) / (focal_px * span_s);
+  g.sigma = (standard_error.cwiseMax(white).cwiseAbs2() + Vec3::Constant(seen_turn * seen_turn)).cwiseSqrt();
+  return g;
 }
 
 bool SlidingWindowEstimator::Impl::still_start_possible(const FeatureFrame& frame, Timestamp t) const {
   const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
   if (imu.empty() || imu.front().t > t - still_ns || imu.back().t < t) return false;
-  if (!camera_still(frame, cfg.still_duration_s, cfg.still_max_motion_px)) return false;
+  if (!still_gyro(frame, t, cfg.still_duration_s, cfg.still_max_motion_px)) return false;
   Vec3 accel = Vec3::Zero();
   const std::vector<ImuSample> samples = imu_samples_between(imu, t - still_ns, t);
   for (const auto& s : samples) accel += s.accel;
@@ -47,11 +67,10 @@ bool SlidingWindowEstimator::Impl::still_start_possible(const FeatureFrame& fram
 StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame, Timestamp t) {
   const Timestamp still_ns = static_cast<Timestamp>(std::llround(cfg.still_duration_s * 1e9));
   const std::vector<ImuSample> samples = imu_samples_between(imu, t - still_ns, t);
-  Vec3 accel = Vec3::Zero(), gyro = Vec3::Zero();
-  for (const auto& s : samples) accel += s.accel, gyro += s.gyro;
+  Vec3 accel = Vec3::Zero();
+  for (const auto& s : samples) accel += s.accel;
   const double count = static_cast<double>(samples.size());
   accel /= count;
-  gyro /= count;
   if (!(accel.norm() > 1.0))
     throw Error("estimator: the mean specific force of the still start is " + std::to_string(accel.norm()) +
                 " m/s^2; cannot find gravity");
@@ -64,18 +83,14 @@ StateEstimate SlidingWindowEstimator::Impl::initialize(const FeatureFrame& frame
                                                 : Vec3::Zero();
   const Vec3 up = accel.normalized();
   const double tilt_sigma = (accel_error - up * up.dot(accel_error)).norm() / accel.norm();
-  // A still window the camera confirms: the body did not turn, so the mean gyro is its bias (the
-  // earth's rate, <= 7.3e-5 rad/s, is below the error of the mean). Its error: the samples' spread
-  // (vibration included) over sqrt(n), never below white noise over the window.
+  // A still window the camera confirms: the mean gyro is the bias.
   Vec3 b_g = Vec3::Zero();
   Vec3 sigma_b_g = Vec3::Constant(cfg.init_sigma_gyro_bias);
-  if (cfg.still_gyro_bias && samples.size() >= 2 && camera_still(frame, cfg.still_duration_s, cfg.still_max_motion_px)) {
-    Vec3 spread = Vec3::Zero();
-    for (const auto& s : samples) spread += (s.gyro - gyro).cwiseAbs2();
-    const Vec3 standard_error = (spread / (count - 1.0)).cwiseSqrt() / std::sqrt(count) * kStillBiasErrorFactor;
-    const double white = imu_noise.gyro_noise_density / std::sqrt(cfg.still_duration_s);
-    b_g = gyro;
-    sigma_b_g = standard_error.cwiseMax(white).cwiseMax(1e-6);
+  const std::optional<StillGyro> still =
+      cfg.still_gyro_bias ? still_gyro(frame, t, cfg.still_duration_s, cfg.still_max_motion_px) : std::nullopt;
+  if (still) {
+    b_g = still->mean;
+    sigma_b_g = still->sigma;
     ++stats.still_gyro_bias_initializations;
   }
   // At rest the accelerometer measures -g: R_W_B accel points up. Yaw is unobservable: 0.

@@ -71,6 +71,7 @@ void SlidingWindowEstimator::Impl::count_newest_inliers(const std::vector<Residu
   for (const Residual& res : residuals) {
     // Visual factors: blocks (anchor pose, target pose, T_B_C, landmark[, td]).
     if (res.blocks.size() < 4 || res.blocks[2] != extrinsic || res.blocks[1] != newest) continue;
+    if (fresh_landmarks.count(res.blocks[3])) continue;
     r.resize(static_cast<std::size_t>(res.cost->num_residuals()));
     if (!res.cost->Evaluate(res.blocks.data(), r.data(), nullptr)) continue;
     double sq = 0;

@@ -65,6 +65,10 @@ struct FailureThresholds {
 
 struct EstimatorConfig {
   int window_size = 10;  ///< keyframes in the window
+  /// Multipliers of the calibration's IMU white-noise densities and random walks (a datasheet's
+  /// values hold for a still, quiet IMU; rotor or gait vibration adds noise the model must cover).
+  double imu_noise_scale = 1.0;
+  double imu_random_walk_scale = 1.0;
 
   // Factor switches.
   bool use_imu = true;
@@ -135,13 +139,13 @@ struct EstimatorConfig {
   /// of that mean; otherwise the bias starts at 0 +- init_sigma_gyro_bias. A still start also
   /// serves a re-initialization when the camera and the accelerometer say the user stands still.
   bool still_gyro_bias = true;
-  double still_max_motion_px = 1.0;
+  double still_max_motion_px = 2.0;
 
   // Zero-velocity update: the newest frame's tracks moved at most zero_velocity_max_motion_px
   // (median) since the frame zero_velocity_lookback_s before it and the predicted speed is below
   // zero_velocity_max_speed_mps: v = 0 +- zero_velocity_sigma_mps.
   double zero_velocity_sigma_mps = 0.01;
-  double zero_velocity_max_motion_px = 1.0;
+  double zero_velocity_max_motion_px = 2.0;
   double zero_velocity_lookback_s = 0.25;
   double zero_velocity_max_speed_mps = 0.3;
 

@@ -2,6 +2,7 @@
 // EuRoC / ASL dataset folders (<sequence>/mav0/{imu0,cam0,cam1,state_groundtruth_estimate0}).
 // See docs/datasets.md for what is read, what is ignored and which problems are errors.
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "navaid/core/calibration.hpp"
@@ -19,7 +20,10 @@ namespace navaid::io {
 ///   row has all 17 columns velocity, gyro bias and accel bias).
 /// leica0/, pointcloud0/ and body.yaml are ignored. Malformed data throws IoError (file:line);
 /// malformed calibration throws ConfigError (file + key).
-Recording read_euroc(const std::filesystem::path& folder);
+/// `imu_calibration`: an IMU sensor.yaml to use instead of imu0/sensor.yaml (for folders that
+/// ship the samples without it).
+Recording read_euroc(const std::filesystem::path& folder,
+                     const std::optional<std::filesystem::path>& imu_calibration = std::nullopt);
 
 /// A camera sensor.yaml in EuRoC's own format (T_BS {rows, cols, data}, rate_hz, resolution,
 /// camera_model pinhole, intrinsics [fu fv cu cv], distortion_model, distortion_coefficients).
