@@ -190,6 +190,25 @@ void write_top_view(const Scenario& scenario, const RayCaster& world, const std:
   io::write_png(file.string(), render_top_view(world, scenario_map_options(scenario, std::min(1200.0, width_m / 0.02), &walked)).image, 6);
 }
 
+// The feature stage's counts in the summary.
+void count_observations(const std::vector<FeatureFrame>& features, SimulationSummary& summary) {
+  std::size_t with_depth = 0;
+  for (const auto& f : features) {
+    summary.observations += f.features.size();
+    for (const auto& o : f.features) with_depth += o.depth_m.has_value();
+  }
+  summary.depth_observation_fraction =
+      summary.observations > 0 ? static_cast<double>(with_depth) / static_cast<double>(summary.observations) : 0.0;
+}
+
+// The image stage's frames into the recording, its confusion matrix and counts.
+void take_frames(FrameStage& stage, const fs::path& out, io::Recording& rec, SimulationSummary& summary) {
+  rec.frames = std::move(stage.frames);
+  write_confusion_matrix(out / "label_confusion.csv", stage.confusion.matrix());
+  summary.rendered_frames = stage.rendered;
+  for (double v : stage.valid_fraction) summary.valid_depth_fraction += v / static_cast<double>(stage.valid_fraction.size());
+}
+
 // Refuses a non-empty folder unless overwriting; creates it.
 void prepare_output(const fs::path& out, const SimulateOptions& options) {
   std::error_code ec;
@@ -283,20 +302,11 @@ SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& con
                      LabelConfusionModel(config.label_confusion), {}, {}, {}};
     if (options.cache_dir) stage.cache.emplace(*options.cache_dir, render_key(scenario, config, frame_times), unit);
     stage.run(options);
-    rec.frames = std::move(stage.frames);
-    write_confusion_matrix(out / "label_confusion.csv", stage.confusion.matrix());
-    summary.rendered_frames = stage.rendered;
-    for (double v : stage.valid_fraction) summary.valid_depth_fraction += v / static_cast<double>(stage.valid_fraction.size());
+    take_frames(stage, out, rec, summary);
   } else {
     rec.landmarks = generate_landmarks(world, trajectory, config.features, scenario.seed);
     rec.features = simulate_features(scenario, config, body_pose, kSimulationEpoch, world, frame_times, rec.landmarks, options);
-    std::size_t with_depth = 0;
-    for (const auto& f : rec.features) {
-      summary.observations += f.features.size();
-      for (const auto& o : f.features) with_depth += o.depth_m.has_value();
-    }
-    summary.depth_observation_fraction =
-        summary.observations > 0 ? static_cast<double>(with_depth) / static_cast<double>(summary.observations) : 0.0;
+    count_observations(rec.features, summary);
   }
   summary.frames_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frames_start).count();
 
@@ -363,10 +373,7 @@ SimulationSummary simulate_recorded_motion(const Scenario& scenario, const Simul
     FrameStage stage{scenario,    config, body_pose, begin, world, out, frame_times, std::nullopt, unit,
                      LabelConfusionModel(config.label_confusion), {}, {}, {}};
     stage.run(options);
-    rec.frames = std::move(stage.frames);
-    write_confusion_matrix(out / "label_confusion.csv", stage.confusion.matrix());
-    summary.rendered_frames = stage.rendered;
-    for (double v : stage.valid_fraction) summary.valid_depth_fraction += v / static_cast<double>(stage.valid_fraction.size());
+    take_frames(stage, out, rec, summary);
   } else {
     // Landmarks seeded from the flown positions themselves (the body flies where it looks from).
     std::mt19937_64 rng(scenario.seed);
@@ -379,13 +386,7 @@ SimulationSummary simulate_recorded_motion(const Scenario& scenario, const Simul
       since_last = 0;
     }
     rec.features = simulate_features(scenario, config, body_pose, begin, world, frame_times, rec.landmarks, options);
-    std::size_t with_depth = 0;
-    for (const auto& f : rec.features) {
-      summary.observations += f.features.size();
-      for (const auto& o : f.features) with_depth += o.depth_m.has_value();
-    }
-    summary.depth_observation_fraction =
-        summary.observations > 0 ? static_cast<double>(with_depth) / static_cast<double>(summary.observations) : 0.0;
+    count_observations(rec.features, summary);
   }
   summary.frames_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frames_start).count();
   finish_recording(scenario, world, config, rec, out, summary);
