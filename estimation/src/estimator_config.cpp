@@ -138,6 +138,11 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.non_keyframe_solve = parse_enum(c.get_string("estimator.solver.non_keyframes", to_string(e.non_keyframe_solve),
                                                  {"window", "newest"}),
                                     non_keyframe_names, non_keyframe_solves);
+  static const char* const ordering_names[] = {"auto", "landmarks", "ceres"};
+  static const SchurOrdering orderings[] = {SchurOrdering::kAuto, SchurOrdering::kLandmarks, SchurOrdering::kCeres};
+  e.schur_ordering = parse_enum(
+      c.get_string("estimator.solver.schur_ordering", to_string(e.schur_ordering), {"auto", "landmarks", "ceres"}),
+      ordering_names, orderings);
 
   e.marginalization = c.get_bool("estimator.marginalization", e.marginalization);
   e.residual_diagnostics = c.get_bool("estimator.diagnostics.residuals", e.residual_diagnostics);
@@ -243,6 +248,14 @@ std::string to_string(LeavingAnchorPolicy policy) {
 }
 std::string to_string(AnchorBearing bearing) { return bearing == AnchorBearing::kFixed ? "fixed" : "estimated"; }
 std::string to_string(NonKeyframeSolve solve) { return solve == NonKeyframeSolve::kWindow ? "window" : "newest"; }
+std::string to_string(SchurOrdering ordering) {
+  switch (ordering) {
+    case SchurOrdering::kAuto: return "auto";
+    case SchurOrdering::kLandmarks: return "landmarks";
+    case SchurOrdering::kCeres: return "ceres";
+  }
+  return "auto";
+}
 std::string to_string(Depth3dCovariance model) { return model == Depth3dCovariance::kFull ? "full" : "paper"; }
 
 }  // namespace navaid::estimation

@@ -10,6 +10,7 @@
 #include <optional>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include <Eigen/Cholesky>
@@ -520,6 +521,39 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
   return out;
 }
 
+std::shared_ptr<ceres::ParameterBlockOrdering> SlidingWindowEstimator::Impl::schur_ordering(
+    const ceres::Problem& problem, const std::vector<Residual>& residuals) {
+  if (cfg.schur_ordering == SchurOrdering::kCeres || cfg.linear_solver == LinearSolverKind::kSparseNormalCholesky)
+    return nullptr;
+  std::unordered_set<const double*> landmarks;
+  for (auto& [id, track] : tracks.tracks()) {
+    const double* landmark = landmark_block(track);
+    if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark)) landmarks.insert(landmark);
+  }
+  // Nothing to eliminate (no landmark in this solve): Ceres chooses.
+  if (landmarks.empty()) return nullptr;
+  if (cfg.schur_ordering == SchurOrdering::kAuto) {
+    // Fixed-size kernels need every landmark row block of one size with pose blocks only (VIO's
+    // 2-row reprojection and anchor bearing). Otherwise (depth factors of 3 and 1 rows, td)
+    // Ceres' independent set, which also eliminates speed-bias blocks, leaves a smaller reduced
+    // system for its dynamic kernels and was faster (docs/estimator.md, "Schur ordering").
+    for (const Residual& r : residuals) {
+      bool on_landmark = false, on_other = false;
+      for (const double* b : r.blocks) {
+        if (landmarks.count(b)) on_landmark = true;
+        else if (!problem.IsParameterBlockConstant(b) && problem.ParameterBlockTangentSize(b) != kPoseTangentSize)
+          on_other = true;
+      }
+      if (on_landmark && (r.cost->num_residuals() != 2 || on_other)) return nullptr;
+    }
+  }
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  std::vector<double*> blocks;
+  problem.GetParameterBlocks(&blocks);
+  for (double* b : blocks) ordering->AddElementToGroup(b, landmarks.count(b) ? 0 : 1);
+  return ordering;
+}
+
 VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>* covariance, bool newest_only) {
   ceres::Problem::Options po;
   // The problem borrows the factors, losses and manifold; they live in this scope.
@@ -558,6 +592,7 @@ VisualCount SlidingWindowEstimator::Impl::solve(std::optional<NewestCovariance>*
   ceres::Solver::Options so;
   so.linear_solver_type = newest_only ? ceres::DENSE_QR : solver_type(cfg.linear_solver);
   so.max_num_iterations = cfg.max_iterations;
+  if (!newest_only) so.linear_solver_ordering = schur_ordering(problem, residuals);
   if (cfg.max_solver_time_s > 0) so.max_solver_time_in_seconds = cfg.max_solver_time_s;
   so.num_threads = 1;
   // Converged when an iteration gains less than 1e-4 of the cost (Ceres' default 1e-6 kept three

@@ -277,6 +277,10 @@ struct SlidingWindowEstimator::Impl {
   /// Solves the window (with `newest_only`, the newest state alone, the rest held); with
   /// `covariance`, also the newest state's covariance from the whole window (nullopt on failure).
   VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr, bool newest_only = false);
+  /// The Schur solvers' elimination group (estimator.solver.schur_ordering): the variable landmark
+  /// blocks, or null for Ceres' own choice.
+  std::shared_ptr<ceres::ParameterBlockOrdering> schur_ordering(const ceres::Problem& problem,
+                                                                const std::vector<Residual>& residuals);
   std::optional<NewestCovariance> newest_covariance(ceres::Problem& problem, const std::vector<Residual>& residuals);
   void accumulate_residual_statistics(const std::vector<Residual>& residuals);
   void count_newest_inliers(const std::vector<Residual>& residuals, VisualCount& count) const;

@@ -37,6 +37,9 @@ enum class CovarianceWeights { kRobust, kInliers };
 /// keyframe does ("window"), or its own state alone against the window held where the last solve
 /// left it ("newest": motion-only, the window's keyframes and landmarks are refined at keyframes).
 enum class NonKeyframeSolve { kWindow, kNewest };
+/// Which blocks a Schur solver eliminates: the landmarks, Ceres' own independent set, or (auto)
+/// the landmarks where that gives Ceres' fixed-size kernels (VIO), Ceres' set otherwise.
+enum class SchurOrdering { kAuto, kLandmarks, kCeres };
 /// How GPS enters (factors.gps): T_ENU_W and GPS factors in the window ("joint"), or the VIO window
 /// alone with T_ENU_W re-registered over the fixes at every fix (eLabrador, "decoupled").
 enum class GpsMode { kJoint, kDecoupled };
@@ -117,6 +120,7 @@ struct EstimatorConfig {
   int max_iterations = 8;
   double max_solver_time_s = 0;  ///< 0: no limit (a limit makes results depend on the machine)
   NonKeyframeSolve non_keyframe_solve = NonKeyframeSolve::kNewest;
+  SchurOrdering schur_ordering = SchurOrdering::kAuto;
 
   bool marginalization = true;
   /// Accumulate whitened residual statistics per factor type after every solve (costs one more
@@ -213,5 +217,6 @@ std::string to_string(AnchorBearing bearing);
 std::string to_string(GpsMode mode);
 std::string to_string(InitializationMethod method);
 std::string to_string(NonKeyframeSolve solve);
+std::string to_string(SchurOrdering ordering);
 
 }  // namespace navaid::estimation
