@@ -262,7 +262,7 @@ class CsvReader {
     } while (is_blank_or_comment(line));
     const auto found = split_fields(line, ',');
     if (!std::equal(found.begin(), found.end(), columns_.begin(), columns_.end()))
-      file_.fail(std::string("header must be '") + header + "', found '" + std::string(trim(line)) + "'");
+      file_.fail(std::string("header must be '") + header + "', found '" + printable(trim(line)) + "'");
   }
 
   bool next() {

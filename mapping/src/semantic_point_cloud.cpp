@@ -50,7 +50,8 @@ SemanticPointCloud make_semantic_point_cloud(const RgbdFrame& frame, const Camer
   const ImageF32& depth = frame.depth;
   if (depth.empty()) throw Error("frame " + std::to_string(frame.index) + ": no depth image loaded");
   if (depth.width != camera.width || depth.height != camera.height)
-    throw Error("frame " + std::to_string(frame.index) + ": depth is " + std::to_string(depth.width) + "x" +
+    throw Error((frame.depth_path.empty() ? std::string() : frame.depth_path + ": ") + "frame " +
+                std::to_string(frame.index) + ": depth is " + std::to_string(depth.width) + "x" +
                 std::to_string(depth.height) + ", camera " + camera.name + " is " + std::to_string(camera.width) +
                 "x" + std::to_string(camera.height));
   const ImageU8* labels = frame.labels ? &*frame.labels : nullptr;
@@ -95,7 +96,8 @@ SemanticPointCloud make_semantic_point_cloud(const RgbdFrame& frame, const Camer
       if (labels) {
         const std::uint8_t id = labels->at(u, v);
         if (!is_valid_semantic_id(id))
-          throw Error("frame " + std::to_string(frame.index) + ": label " + std::to_string(id) + " at pixel (" +
+          throw Error((frame.labels_path.empty() ? std::string() : frame.labels_path + ": ") + "frame " +
+                      std::to_string(frame.index) + ": label " + std::to_string(id) + " at pixel (" +
                       std::to_string(u) + ", " + std::to_string(v) + ") is not a class id (0.." +
                       std::to_string(kNumSemanticClasses - 1) + ")");
         if (ignored[id]) {

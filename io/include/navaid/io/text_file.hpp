@@ -17,7 +17,8 @@ class TextFile {
   /// Opens `path`; throws IoError when it does not exist or cannot be read.
   explicit TextFile(const std::filesystem::path& path);
 
-  /// Next line without its line ending ("\n" or "\r\n"); false at end of file.
+  /// Next line without its line ending ("\n" or "\r\n") and, on line 1, without a UTF-8
+  /// byte-order mark; false at end of file.
   bool next(std::string& line);
   std::size_t line_number() const { return line_number_; }
   const std::string& path() const { return path_; }
@@ -35,6 +36,8 @@ class TextFile {
 std::string_view trim(std::string_view text);
 /// True for empty lines and lines whose first non-blank character is '#'.
 bool is_blank_or_comment(std::string_view line);
+/// `text` for an error message: bytes outside printable ASCII as \xNN, cut after `max_chars`.
+std::string printable(std::string_view text, std::size_t max_chars = 80);
 /// Splits on `separator` (or on runs of blanks when separator is ' '), trimming each field.
 std::vector<std::string_view> split_fields(std::string_view line, char separator);
 
