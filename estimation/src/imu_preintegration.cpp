@@ -1,5 +1,6 @@
 #include "navaid/estimation/imu_preintegration.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -36,10 +37,17 @@ void validate(const ImuNoise& noise, const std::string& source) {
   require(noise.accel_noise_density, "accel_noise_density");
   require(noise.gyro_random_walk, "gyro_random_walk");
   require(noise.accel_random_walk, "accel_random_walk");
+  require(noise.max_sample_gap_s, "max_sample_gap");
+  if (noise.max_sample_gap_s > 0) {
+    if (!(noise.gap_gyro_density > 0) || !std::isfinite(noise.gap_gyro_density))
+      throw ConfigError(source, "gap_gyro_density", "must be finite and > 0");
+    if (!(noise.gap_accel_density > 0) || !std::isfinite(noise.gap_accel_density))
+      throw ConfigError(source, "gap_accel_density", "must be finite and > 0");
+  }
 }
 
 std::vector<ImuSample> imu_samples_between(const std::vector<ImuSample>& stream, Timestamp t_begin,
-                                           Timestamp t_end) {
+                                           Timestamp t_end, std::vector<double>* raw_step_s) {
   if (t_end <= t_begin) {
     throw Error("imu_samples_between: empty interval [" + format_seconds(t_begin) + ", " + format_seconds(t_end) +
                 "] s");
@@ -54,18 +62,24 @@ std::vector<ImuSample> imu_samples_between(const std::vector<ImuSample>& stream,
     }
   }
   std::vector<ImuSample> out;
+  if (raw_step_s) raw_step_s->clear();
+  // The step ending at stream[k] (or interpolated just before it) lies in [stream[k-1], stream[k]].
+  const auto push = [&](const ImuSample& s, std::size_t k) {
+    out.push_back(s);
+    if (raw_step_s) raw_step_s->push_back(out.size() == 1 ? 0.0 : ns_to_seconds(stream[k].t - stream[k - 1].t));
+  };
   for (std::size_t k = 0; k < stream.size(); ++k) {
     const ImuSample& s = stream[k];
     if (!s.has_gyro) throw Error("imu_samples_between: sample " + std::to_string(k) + " has no gyro data");
     if (s.t < t_begin) {
-      if (stream[k + 1].t > t_begin) out.push_back(interpolate_sample(s, stream[k + 1], t_begin));
+      if (stream[k + 1].t > t_begin) push(interpolate_sample(s, stream[k + 1], t_begin), k + 1);
       continue;
     }
     if (s.t > t_end) {
-      out.push_back(interpolate_sample(stream[k - 1], s, t_end));
+      push(interpolate_sample(stream[k - 1], s, t_end), k);
       break;
     }
-    out.push_back(s);
+    push(s, k);
     if (s.t == t_end) break;
   }
   return out;
@@ -79,21 +93,24 @@ ImuPreintegration::ImuPreintegration(const ImuNoise& noise, const Vec3& b_g, con
 ImuPreintegration ImuPreintegration::between(const std::vector<ImuSample>& stream, Timestamp t_i, Timestamp t_j,
                                               const ImuNoise& noise, const Vec3& b_g, const Vec3& b_a) {
   ImuPreintegration p(noise, b_g, b_a);
-  for (const ImuSample& s : imu_samples_between(stream, t_i, t_j)) p.add(s);
+  std::vector<double> raw_step_s;
+  const std::vector<ImuSample> samples = imu_samples_between(stream, t_i, t_j, &raw_step_s);
+  for (std::size_t m = 0; m < samples.size(); ++m) p.add(samples[m], raw_step_s[m]);
   return p;
 }
 
 Timestamp ImuPreintegration::start_time() const { return samples_.empty() ? 0 : samples_.front().t; }
 Timestamp ImuPreintegration::end_time() const { return samples_.empty() ? 0 : samples_.back().t; }
 
-void ImuPreintegration::add(const ImuSample& sample) {
+void ImuPreintegration::add(const ImuSample& sample, double raw_step_s) {
   if (!sample.has_gyro) throw Error("ImuPreintegration::add: sample without gyro data");
   if (!samples_.empty() && sample.t <= samples_.back().t) {
     throw Error("ImuPreintegration::add: sample time " + format_seconds(sample.t) + " s is not after " +
                 format_seconds(samples_.back().t) + " s");
   }
   samples_.push_back(sample);
-  if (samples_.size() >= 2) integrate_step(samples_[samples_.size() - 2], samples_.back());
+  raw_step_s_.push_back(raw_step_s);
+  if (samples_.size() >= 2) integrate_step(samples_[samples_.size() - 2], samples_.back(), raw_step_s);
 }
 
 void ImuPreintegration::reset_integration() {
@@ -109,7 +126,7 @@ void ImuPreintegration::repropagate(const Vec3& b_g, const Vec3& b_a) {
   b_g_ = b_g;
   b_a_ = b_a;
   reset_integration();
-  for (std::size_t k = 1; k < samples_.size(); ++k) integrate_step(samples_[k - 1], samples_[k]);
+  for (std::size_t k = 1; k < samples_.size(); ++k) integrate_step(samples_[k - 1], samples_[k], raw_step_s_[k]);
 }
 
 bool ImuPreintegration::repropagate_if_needed(const Vec3& b_g, const Vec3& b_a, double gyro_threshold,
@@ -119,7 +136,26 @@ bool ImuPreintegration::repropagate_if_needed(const Vec3& b_g, const Vec3& b_a, 
   return true;
 }
 
-void ImuPreintegration::integrate_step(const ImuSample& s0, const ImuSample& s1) {
+void ImuPreintegration::integrate_step(const ImuSample& s0, const ImuSample& s1, double raw_step_s) {
+  const double h = ns_to_seconds(s1.t - s0.t);
+  if (noise_.max_sample_gap_s > 0 && std::max(h, raw_step_s) > noise_.max_sample_gap_s) {
+    // Two sub-steps at least (one alone drives position and velocity with the same three force
+    // errors), at most 2000: a longer gap gets longer ones and the covariance stays full rank.
+    const int n =
+        static_cast<int>(std::clamp(std::ceil(h / (0.5 * noise_.max_sample_gap_s)), 2.0, 2000.0));
+    ImuSample a = s0;
+    for (int k = 1; k <= n; ++k) {
+      const auto t = s0.t + static_cast<Timestamp>(std::llround(static_cast<double>(s1.t - s0.t) * k / n));
+      const ImuSample b = k == n ? s1 : interpolate_sample(s0, s1, t);
+      integrate_substep(a, b, noise_.gap_gyro_density, noise_.gap_accel_density);
+      a = b;
+    }
+    return;
+  }
+  integrate_substep(s0, s1, noise_.gyro_noise_density, noise_.accel_noise_density);
+}
+
+void ImuPreintegration::integrate_substep(const ImuSample& s0, const ImuSample& s1, double ng, double na) {
   const double h = ns_to_seconds(s1.t - s0.t);
   const Mat3 I = Mat3::Identity();
 
@@ -163,12 +199,16 @@ void ImuPreintegration::integrate_step(const ImuSample& s0, const ImuSample& s1)
   G.block<3, 3>(kBiasGyro, 6) = I;
   G.block<3, 3>(kBiasAccel, 9) = I;
   Eigen::Matrix<double, 12, 1> q;
-  const double ng = noise_.gyro_noise_density, na = noise_.accel_noise_density;
   const double wg = noise_.gyro_random_walk, wa = noise_.accel_random_walk;
   q << Vec3::Constant(ng * ng / h), Vec3::Constant(na * na / h), Vec3::Constant(wg * wg * h),
       Vec3::Constant(wa * wa * h);
 
   P_ = F * P_ * F.transpose() + G * q.asDiagonal() * G.transpose();
+  // The mid-point sums lose the force noise's spread of position within the step (q_a h^3/12;
+  // free fall then gives the continuous-time q_a T^3/3 exactly). Without it an interval of one
+  // step (two frames between two IMU samples) has a singular covariance: position and velocity
+  // driven by the same three force errors.
+  P_.block<3, 3>(kAlpha, kAlpha) += (na * na * h * h * h / 12.0) * I;
   P_ = 0.5 * (P_ + P_.transpose());
   J_ = F * J_;
 

@@ -50,6 +50,14 @@ struct ImuNoise {
   double accel_noise_density = 0;  ///< [m/s^2/sqrt(Hz)]
   double gyro_random_walk = 0;     ///< [rad/s^2/sqrt(Hz)]
   double accel_random_walk = 0;    ///< [m/s^3/sqrt(Hz)]
+  /// A step between two samples longer than this is a gap in the IMU stream (0: none is). It is
+  /// bridged in at least two sub-steps of at most half this length with the densities below in place of the sensor's:
+  /// the samples on either side say little about the rotation and acceleration in between, and
+  /// one long step alone would leave the covariance singular (position and velocity both driven
+  /// by the same three force errors).
+  double max_sample_gap_s = 0;
+  double gap_gyro_density = 0.5;   ///< [rad/s/sqrt(Hz)] the walker's turning, unmeasured
+  double gap_accel_density = 2.0;  ///< [m/s^2/sqrt(Hz)] the walker's acceleration, unmeasured
 
   static ImuNoise from(const ImuCalibration& calibration);
 };
@@ -64,9 +72,11 @@ enum ImuErrorIndex : int { kTheta = 0, kAlpha = 3, kBeta = 6, kBiasGyro = 9, kBi
 /// samples strictly inside, a sample at t_end. An end that falls between two samples gets a sample
 /// linearly interpolated between them (keyframe times rarely hit the IMU grid). Throws Error when
 /// the stream does not cover the interval, is not strictly increasing in time, lacks gyro data,
-/// or when t_end <= t_begin.
+/// or when t_end <= t_begin. With `raw_step_s`, element m (m >= 1) receives the length of the
+/// stream interval that holds the step from sample m-1 to m (element 0 is 0): an interpolated
+/// step inside a gap is short, but the stream said nothing over the whole gap.
 std::vector<ImuSample> imu_samples_between(const std::vector<ImuSample>& stream, Timestamp t_begin,
-                                           Timestamp t_end);
+                                           Timestamp t_end, std::vector<double>* raw_step_s = nullptr);
 
 class ImuPreintegration {
  public:
@@ -78,8 +88,10 @@ class ImuPreintegration {
                                    const ImuNoise& noise, const Vec3& b_g, const Vec3& b_a);
 
   /// Appends a sample; the first one sets t_i. Throws Error unless t is strictly after the last
-  /// sample and the sample has gyro data.
-  void add(const ImuSample& sample);
+  /// sample and the sample has gyro data. `raw_step_s` is the length of the stream interval this
+  /// step lies in (0: the step itself); a step inside a gap longer than
+  /// ImuNoise::max_sample_gap_s is bridged.
+  void add(const ImuSample& sample, double raw_step_s = 0);
 
   /// Integrates all samples again at new linearization biases.
   void repropagate(const Vec3& b_g, const Vec3& b_a);
@@ -121,11 +133,14 @@ class ImuPreintegration {
 
  private:
   void reset_integration();
-  void integrate_step(const ImuSample& s0, const ImuSample& s1);
+  void integrate_step(const ImuSample& s0, const ImuSample& s1, double raw_step_s);
+  /// One mid-point step with white-noise densities ng (rate) and na (specific force).
+  void integrate_substep(const ImuSample& s0, const ImuSample& s1, double ng, double na);
 
   ImuNoise noise_;
   Vec3 b_g_, b_a_;
   std::vector<ImuSample> samples_;
+  std::vector<double> raw_step_s_;  ///< per sample, as given to add()
   double dt_ = 0;
   Quat gamma_ = Quat::Identity();
   Vec3 alpha_ = Vec3::Zero(), beta_ = Vec3::Zero();
