@@ -49,6 +49,12 @@ void read_mag(const Config& c, EstimatorConfig& e) {
   }
   e.mag_sigma = c.get_double("estimator.mag.sigma", e.mag_sigma, {1e-10, 1e-4});
   e.mag_max_time_offset_s = c.get_double("estimator.mag.max_time_offset", e.mag_max_time_offset_s, {0, 1});
+  e.mag_max_norm_deviation = c.get_double("estimator.mag.max_norm_deviation", e.mag_max_norm_deviation, {0, 10});
+  e.mag_max_inclination_deviation_deg =
+      c.get_double("estimator.mag.max_inclination_deviation", e.mag_max_inclination_deviation_deg, {0, 180});
+  e.mag_max_heading_deviation_deg =
+      c.get_double("estimator.mag.max_heading_deviation", e.mag_max_heading_deviation_deg, {0, 180});
+  e.mag_max_disturbance_s = c.get_double("estimator.mag.max_disturbance", e.mag_max_disturbance_s, {0, 3600});
 }
 
 }  // namespace
@@ -60,6 +66,9 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.use_imu = c.get_bool("estimator.factors.imu", e.use_imu);
   e.imu_noise_scale = c.get_double("estimator.imu.noise_scale", e.imu_noise_scale, {1e-3, 1e3});
   e.imu_random_walk_scale = c.get_double("estimator.imu.random_walk_scale", e.imu_random_walk_scale, {1e-3, 1e3});
+  e.imu_max_sample_gap_s = c.get_double("estimator.imu.max_sample_gap", e.imu_max_sample_gap_s, {0, 10});
+  e.imu_gap_gyro_density = c.get_double("estimator.imu.gap_gyro_density", e.imu_gap_gyro_density, {1e-4, 100});
+  e.imu_gap_accel_density = c.get_double("estimator.imu.gap_accel_density", e.imu_gap_accel_density, {1e-3, 1000});
   e.use_reprojection = c.get_bool("estimator.factors.reprojection", e.use_reprojection);
   e.use_inverse_depth = c.get_bool("estimator.factors.inverse_depth", e.use_inverse_depth);
   e.use_depth_3d = c.get_bool("estimator.factors.depth_3d", e.use_depth_3d);

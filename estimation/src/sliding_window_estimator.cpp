@@ -90,6 +90,9 @@ SlidingWindowEstimator::Impl::Impl(const RigCalibration& rig, const EstimatorCon
   imu_noise.accel_noise_density *= cfg.imu_noise_scale;
   imu_noise.gyro_random_walk *= cfg.imu_random_walk_scale;
   imu_noise.accel_random_walk *= cfg.imu_random_walk_scale;
+  imu_noise.max_sample_gap_s = cfg.imu_max_sample_gap_s;
+  imu_noise.gap_gyro_density = cfg.imu_gap_gyro_density;
+  imu_noise.gap_accel_density = cfg.imu_gap_accel_density;
   validate(imu_noise, "calibration: imu");
   focal_px = std::sqrt(camera.fx * camera.fy);
   camera_to_imu_ns = static_cast<Timestamp>(std::llround(camera.time_offset_s * 1e9));
@@ -145,6 +148,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       mag(o.mag),
       mag_sigma_yaw(o.mag_sigma_yaw),
       mag_referenced(o.mag_referenced),
+      mag_heading_off_since(o.mag_heading_off_since),
       mag_prior(o.mag_prior ? std::make_shared<MarginalizationPrior>(*o.mag_prior) : nullptr),
       tracks(o.tracks),
       imu(o.imu),
@@ -770,7 +774,13 @@ StateEstimate SlidingWindowEstimator::Impl::handle_frame(const FeatureFrame& fra
     last_estimate = initialize(frame, t);
     return *last_estimate;
   }
-  if (t <= window.back()->t) throw Error("estimator: feature frames must have increasing time stamps");
+  if (t <= window.back()->t) {
+    // Camera stamps arrive increasing (handle() checks), so the time offset estimated so far
+    // moved: skip the frame, counted, rather than stop the walk.
+    if (!last_estimate) throw Error("estimator: feature frames must have increasing time stamps");
+    ++stats.frames_out_of_time_order;
+    return estimate_of(*window.back(), frame.t, last_estimate->mode, last_estimate->covariance);
+  }
 
   const WindowState& last_kf = *window.back();
   auto s = std::make_unique<WindowState>();

@@ -363,6 +363,8 @@ std::string run_recording(const RecordingRunOptions& a) {
                          {"last_failure", st.last_initialization_failure},
                          {"still_gyro_bias", st.still_gyro_bias_initializations}};
   j["zero_velocity_frames"] = st.zero_velocity_frames;
+  j["frames_out_of_time_order"] = st.frames_out_of_time_order;
+  if (est_config.use_mag) j["mag_disturbed_states"] = st.mag_disturbed;
   if (st.failures > 0)
     spdlog::warn("{} implausible solve(s): {} window restart(s) in the same map frame, {} re-initialization(s) in a "
                  "new map frame (last: {})",

@@ -108,6 +108,32 @@ void SlidingWindowEstimator::Impl::set_mag_reference(const Vec3& field_B, const 
       gaussian_block_prior(mag_alignment, BlockKind::kEuclidean, kEnuAlignmentSize, sqrt_info));
 }
 
+bool SlidingWindowEstimator::Impl::magnetically_disturbed(const Vec3& field_B, const WindowState& s) {
+  const Vec3& ref = cfg.mag_reference_field_enu;
+  const Vec3 h = s.T_W_B().q * field_B;
+  constexpr double kDeg = 180.0 / M_PI;
+  const auto inclination = [](const Vec3& v) { return std::atan2(v.z(), v.head<2>().norm()); };
+  // W and ENU share the up axis: strength and inclination need no heading, only the state's tilt.
+  bool off = (cfg.mag_max_norm_deviation > 0 &&
+              std::abs(field_B.norm() - ref.norm()) > cfg.mag_max_norm_deviation * ref.norm()) ||
+             (cfg.mag_max_inclination_deviation_deg > 0 &&
+              std::abs(inclination(h) - inclination(ref)) * kDeg > cfg.mag_max_inclination_deviation_deg);
+  if (!off && mag_referenced && cfg.mag_max_heading_deviation_deg > 0) {
+    // Rz(psi) turns headings in W into ENU (set_mag_reference).
+    const double psi = mag_alignment_block()[0];
+    const double heading_off =
+        std::remainder(std::atan2(ref.y(), ref.x()) - std::atan2(h.y(), h.x()) - psi, 2.0 * M_PI) * kDeg;
+    if (std::abs(heading_off) > cfg.mag_max_heading_deviation_deg) {
+      // A heading that disagrees for long is the state's drift, not a disturbance.
+      if (!mag_heading_off_since) mag_heading_off_since = s.t;
+      off = ns_to_seconds(s.t - *mag_heading_off_since) <= cfg.mag_max_disturbance_s;
+      return off;
+    }
+  }
+  mag_heading_off_since.reset();
+  return off;
+}
+
 void SlidingWindowEstimator::Impl::attach_mag(WindowState& s) {
   if (s.mag_decided) return;
   const Timestamp tolerance = static_cast<Timestamp>(std::llround(cfg.mag_max_time_offset_s * 1e9));
@@ -129,6 +155,10 @@ void SlidingWindowEstimator::Impl::attach_mag(WindowState& s) {
     return;
   }
   if (!(field.norm() > 0)) return;
+  if (magnetically_disturbed(field, s)) {
+    ++stats.mag_disturbed;
+    return;
+  }
   if (!mag_referenced) set_mag_reference(field, s.T_W_B());  // no sample during the still start
   s.mag_B = field;
 }

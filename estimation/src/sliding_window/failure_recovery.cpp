@@ -42,6 +42,7 @@ void SlidingWindowEstimator::Impl::clear_window(bool new_map_frame) {
   registration_pairs.clear();
   decoupled_T_ENU_W.reset();
   mag_referenced = false;
+  mag_heading_off_since.reset();
   mag_prior.reset();
   last_estimate.reset();
   confirmed.clear();

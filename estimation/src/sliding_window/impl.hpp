@@ -178,6 +178,7 @@ struct SlidingWindowEstimator::Impl {
   double mag_sigma_yaw = 0;
   bool mag_referenced = false;
   double mag_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
+  std::optional<Timestamp> mag_heading_off_since;  ///< first state whose field heading disagreed
   std::shared_ptr<MarginalizationPrior> mag_prior;
 
   // The poses' manifold, for the solve's problem and the covariance's tangent-space Jacobians.
@@ -233,6 +234,8 @@ struct SlidingWindowEstimator::Impl {
   void reregister_gps(const WindowState& s);
   GpsRegistration registration(const std::vector<GpsRegistrationPair>& pairs) const;
   void attach_mag(WindowState& s);
+  /// The disturbance test of estimator.mag.max_norm_deviation / max_inclination_deviation.
+  bool magnetically_disturbed(const Vec3& field_B, const WindowState& s);
   void set_mag_reference(const Vec3& field_B, const SE3& T_W_B);
   double* mag_alignment_block() { return enu_registered ? enu_alignment : mag_alignment; }
   Vec3 fix_enu(const GpsFix& fix) const;

@@ -72,6 +72,12 @@ struct EstimatorConfig {
   /// values hold for a still, quiet IMU; rotor or gait vibration adds noise the model must cover).
   double imu_noise_scale = 1.0;
   double imu_random_walk_scale = 1.0;
+  /// A gap in the IMU stream longer than this is bridged with the walker's motion as noise
+  /// (ImuNoise::max_sample_gap_s; 0 = never): a dropped USB packet or a stalled driver then
+  /// widens the covariance instead of stopping the run.
+  double imu_max_sample_gap_s = 0.05;
+  double imu_gap_gyro_density = 0.5;   ///< [rad/s/sqrt(Hz)]
+  double imu_gap_accel_density = 2.0;  ///< [m/s^2/sqrt(Hz)]
 
   // Factor switches.
   bool use_imu = true;
@@ -174,6 +180,16 @@ struct EstimatorConfig {
   /// A state gets the samples bracketing it interpolated when both lie within this time of it,
   /// else the nearest one within it, else no magnetometer factor [s].
   double mag_max_time_offset_s = 0.03;
+  /// A disturbed field (steel, a passing car, a motor) is not used: its strength off the
+  /// reference's by more than this fraction, or its inclination (in the state's gravity-aligned
+  /// frame) off by more than this angle [deg]. 0 switches a test off.
+  double mag_max_norm_deviation = 0.15;
+  double mag_max_inclination_deviation_deg = 10.0;
+  /// Once W has a magnetic heading: a field whose heading disagrees with the state's by more than
+  /// this [deg] is disturbed too, unless it has disagreed for longer than
+  /// mag_max_disturbance_s (then the state's yaw drifted, and the field is trusted again).
+  double mag_max_heading_deviation_deg = 20.0;
+  double mag_max_disturbance_s = 10.0;
 
   /// IMU-only for longer than this: mode "lost".
   double lost_after_s = 2.0;

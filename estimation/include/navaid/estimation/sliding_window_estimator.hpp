@@ -91,6 +91,13 @@ struct EstimatorStatistics {
   std::size_t still_gyro_bias_initializations = 0;
   /// Frames that got a zero-velocity update (their tracks stood still).
   std::size_t zero_velocity_frames = 0;
+  /// Frames whose IMU-clock time (camera stamp + the time offset estimated so far) was not after
+  /// the newest state's: a camera clock that jumped back, with the offset still moving. Their
+  /// observations are dropped; their estimate is the newest state's.
+  std::size_t frames_out_of_time_order = 0;
+  /// States whose magnetometer field failed the disturbance test (strength or inclination off
+  /// the reference's: estimator.mag.max_norm_deviation, max_inclination_deviation).
+  std::size_t mag_disturbed = 0;
   /// Failure detection (estimator.failure.*): solves found implausible, the last reason (with its
   /// time), window restarts from the last good estimate (map frame kept) and re-initializations
   /// in a new map frame (W moved: consumers must drop what they built in the old one).
