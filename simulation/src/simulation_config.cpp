@@ -198,6 +198,7 @@ SimulationConfig read_simulation_config(const Config& c, const Scenario& scenari
   s.seed = static_cast<std::uint64_t>(c.get_int("seed", 0, 0, std::numeric_limits<long long>::max()));
   s.duration_s = c.get_double("duration", 0.0, {0, 1e6});
   s.still_time_s = c.get_double("simulation.still_time", s.still_time_s, {0, 60});
+  s.laps = static_cast<int>(c.get_int("simulation.laps", s.laps, 1, 10000));
   s.mode = c.get_string("simulation.mode", "images", {"images", "features"}) == "images" ? SimulationMode::kImages
                                                                                           : SimulationMode::kFeatures;
 

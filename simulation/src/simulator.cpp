@@ -263,13 +263,28 @@ void write_scenario_targets(const Scenario& scenario, const fs::path& file) {
   io::write_targets_csv(file, targets);
 }
 
+namespace {
+
+/// The scenario's path walked `laps` times; more than one lap needs a closed path.
+std::vector<Vec2> walking_path(const Scenario& scenario, int laps) {
+  std::vector<Vec2> path = scenario.path;
+  if (laps == 1) return path;
+  if (path.size() < 3 || (path.front() - path.back()).norm() > 0.01)
+    throw ConfigError("simulation", "simulation.laps",
+                      "scenario '" + scenario.name + "' does not walk a closed path: it has one lap only");
+  for (int lap = 1; lap < laps; ++lap) path.insert(path.end(), scenario.path.begin() + 1, scenario.path.end());
+  return path;
+}
+
+}  // namespace
+
 SimulationSummary simulate(const Scenario& scenario, const SimulationConfig& config, const fs::path& out,
                            const SimulateOptions& options) {
   prepare_output(out, options);
 
   WalkerConfig walker = config.walker;
   walker.ground_z_m = scenario.ground_z_m;
-  const WalkerTrajectory trajectory(scenario.path, walker);
+  const WalkerTrajectory trajectory(walking_path(scenario, config.laps), walker);
   const BodyPose body_pose = [&trajectory](double t_s) { return trajectory.state(t_s).T_W_B; };
   const double t_begin = -config.still_time_s;
   const double t_end = config.duration_s > 0 ? std::min(t_begin + config.duration_s, trajectory.duration()) : trajectory.duration();

@@ -36,6 +36,7 @@ struct SimulationConfig {
   std::uint64_t seed = 0;          ///< noise seed (the rendering does not depend on it)
   double duration_s = 0;           ///< 0: the whole walk
   double still_time_s = 1.0;       ///< standing still before walking off
+  int laps = 1;                    ///< times round a closed path (long-walk tests)
   SimulationMode mode = SimulationMode::kImages;
   WalkerConfig walker;
 
