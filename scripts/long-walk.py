@@ -1,0 +1,133 @@
+#!/usr/bin/env python3
+"""A long walk through `navaid run` with its resources watched (docs/robustness.md, "Long walks").
+
+Simulates lab-walk-1 (a closed 26.2 m loop) for LAPS laps, runs `navaid run` on it and samples the
+process every second from /proc: resident memory, open file descriptors, threads. Writes
+OUT/resources.csv, OUT/frame-time.csv (median per-frame time per block of the walk),
+OUT/long-walk.png and OUT/verdict.json, and exits 1 unless
+  - resident memory after warm-up (the first WARMUP share of the run) grows < 10 % (--max-rss-growth),
+  - the per-frame time does not grow (median of the last block <= 1.25 x the first after warm-up),
+  - file descriptors and threads at the end are what they were after warm-up.
+Usage: long-walk.py --navaid BUILD/apps/navaid --out DIR [--laps N] [--mode features|images]
+                    [--max-rss-growth X] [--set KEY=VALUE ...]
+"""
+import argparse
+import csv
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+
+def proc_sample(pid):
+    rss_kb = threads = None
+    with open(f"/proc/{pid}/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                rss_kb = int(line.split()[1])
+            elif line.startswith("Threads:"):
+                threads = int(line.split()[1])
+    fds = len(os.listdir(f"/proc/{pid}/fd"))
+    return rss_kb, fds, threads
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--navaid", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--laps", type=int, default=150)
+    ap.add_argument("--mode", choices=["features", "images"], default="features")
+    ap.add_argument("--warmup", type=float, default=0.2, help="share of the run that is warm-up")
+    ap.add_argument("--blocks", type=int, default=10, help="blocks of the walk for the frame-time curve")
+    ap.add_argument("--max-rss-growth", type=float, default=0.10,
+                    help="allowed growth of resident memory after warm-up (share)")
+    ap.add_argument("--set", action="append", default=[], help="extra simulate --set (images: resolution)")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    rec, run = os.path.join(a.out, "recording"), os.path.join(a.out, "run")
+
+    sim = [a.navaid, "simulate", "--scenario", "lab-walk-1", "--mount", "hand", "--seed", "1", "--overwrite",
+           "--out", rec, "--set", f"simulation.mode={a.mode}", "--set", f"simulation.laps={a.laps}"]
+    for s in a.set:
+        sim += ["--set", s]
+    subprocess.run(sim, check=True, stdout=subprocess.DEVNULL)
+
+    # The program is started without a shell; its output goes to a log.
+    with open(os.path.join(a.out, "run.log"), "w") as log:
+        start = time.monotonic()
+        p = subprocess.Popen([a.navaid, "run", "--recording", rec, "--out", run, "--no-plot"], stdout=log,
+                             stderr=subprocess.STDOUT)
+        samples = []
+        while p.poll() is None:
+            try:
+                samples.append((time.monotonic() - start,) + proc_sample(p.pid))
+            except (FileNotFoundError, ProcessLookupError, PermissionError):
+                break
+            time.sleep(1.0)
+        p.wait()
+    if p.returncode != 0:
+        print(f"long-walk: navaid run failed ({p.returncode}); see {a.out}/run.log", file=sys.stderr)
+        return 1
+    samples = [s for s in samples if None not in s]
+    with open(os.path.join(a.out, "resources.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["wall_s", "rss_kb", "fds", "threads"])
+        w.writerows(samples)
+
+    # Per-frame time, median per block of frames.
+    with open(os.path.join(run, "timing.csv")) as f:
+        ms = [float(r["ms"]) for r in csv.DictReader(f)]
+    n = len(ms) // a.blocks
+    blocks = [statistics.median(ms[i * n:(i + 1) * n]) for i in range(a.blocks)]
+    with open(os.path.join(a.out, "frame-time.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["block", "first_frame", "median_ms"])
+        w.writerows((i, i * n, b) for i, b in enumerate(blocks))
+
+    warm = [s for s in samples if s[0] >= a.warmup * samples[-1][0]]
+    if len(warm) < 3:
+        print("long-walk: the run was too short to watch (fewer than 3 samples after warm-up)", file=sys.stderr)
+        return 1
+    rss0, rss_max = warm[0][1], max(s[1] for s in warm)
+    first_block = int(a.warmup * a.blocks)
+    verdict = {
+        "laps": a.laps, "mode": a.mode, "frames": len(ms), "wall_s": samples[-1][0],
+        "rss_after_warmup_mb": rss0 / 1024, "rss_max_mb": rss_max / 1024,
+        "rss_growth": rss_max / rss0 - 1,
+        "frame_ms_first_block": blocks[first_block], "frame_ms_last_block": blocks[-1],
+        "fds_after_warmup": warm[0][2], "fds_end": warm[-1][2],
+        "threads_after_warmup": warm[0][3], "threads_end": warm[-1][3],
+    }
+    checks = {
+        f"memory grows < {a.max_rss_growth:.0%}": verdict["rss_growth"] < a.max_rss_growth,
+        "frame time does not grow": blocks[-1] <= 1.25 * blocks[first_block],
+        "no file handle leak": warm[-1][2] <= warm[0][2],
+        "no thread leak": warm[-1][3] <= warm[0][3],
+    }
+    verdict["checks"] = checks
+    with open(os.path.join(a.out, "verdict.json"), "w") as f:
+        json.dump(verdict, f, indent=1)
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, (m, t) = plt.subplots(2, 1, figsize=(7, 5))
+        m.plot([s[0] for s in samples], [s[1] / 1024 for s in samples])
+        m.axvline(warm[0][0], ls="--", c="grey")
+        m.set_ylabel("resident memory [MB]")
+        m.set_xlabel("wall time [s]")
+        t.plot([i * n for i in range(a.blocks)], blocks, marker="o")
+        t.set_ylabel("median per-frame time [ms]")
+        t.set_xlabel("frame")
+        fig.tight_layout()
+        fig.savefig(os.path.join(a.out, "long-walk.png"), dpi=100)
+    except ImportError:
+        pass
+    print(json.dumps(verdict, indent=1))
+    return 0 if all(checks.values()) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
