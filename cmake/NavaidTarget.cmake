@@ -33,6 +33,9 @@ function(navaid_add_room room)
   target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_features(${target} PUBLIC cxx_std_17)
   navaid_warnings(${target})
+  if(room IN_LIST NAVAID_FUZZED_ROOMS)
+    navaid_fuzz_instrument(${target})
+  endif()
   install(TARGETS ${target} EXPORT navaidTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})

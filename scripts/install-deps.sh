@@ -23,6 +23,7 @@ PACKAGES=(
   socat
   chromium
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang clang-14 libfuzzer-14-dev llvm-14
   python3 python3-matplotlib python3-numpy
 )
 

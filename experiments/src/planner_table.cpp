@@ -110,7 +110,8 @@ MapResult run_map(const PlannerTableSpec& spec, const PlannerTableMap& map, std:
 
   std::vector<std::unique_ptr<planning::LocalPlanner>> planners;
   std::vector<const planning::LocalPlanner*> raw;
-  for (const auto& [name, overrides] : map.set) {
+  for (const auto& entry : map.set) {
+    const std::string& name = entry.first;  // a named reference: lambdas may not capture bindings
     if (std::none_of(spec.planners.begin(), spec.planners.end(), [&](const auto& p) { return p.name == name; }))
       throw ConfigError(spec_file.string(), "maps." + map.name + ".set", "names no planner '" + name + "'");
   }

@@ -227,7 +227,8 @@ std::string render_message(const SpokenMessage& message, std::string_view langua
   const auto& all = templates();
   const auto t = std::find_if(all.begin(), all.end(), [&](const Template& x) { return x.id == message.id; });
   if (t == all.end()) throw Error(fmt::format("no message template '{}'", message.id));
-  for (const auto& [name, value] : message.args) {
+  for (const auto& given : message.args) {
+    const std::string& name = given.first;  // a named copy: C++17 lambdas cannot capture bindings
     if (std::none_of(t->args.begin(), t->args.end(), [&](const Arg& a) { return a.name == name; })) {
       throw Error(fmt::format("message '{}' takes no argument '{}'", t->id, name));
     }
