@@ -41,6 +41,8 @@ def main():
     ap.add_argument("--mode", choices=["features", "images"], default="features")
     ap.add_argument("--warmup", type=float, default=0.2, help="share of the run that is warm-up")
     ap.add_argument("--blocks", type=int, default=10, help="blocks of the walk for the frame-time curve")
+    ap.add_argument("--no-time-check", action="store_true",
+                    help="report the per-frame time without judging it (tests: a loaded machine is not a regression)")
     ap.add_argument("--max-rss-growth", type=float, default=0.10,
                     help="allowed growth of resident memory after warm-up (share)")
     ap.add_argument("--set", action="append", default=[], help="extra simulate --set (images: resolution)")
@@ -102,10 +104,11 @@ def main():
     }
     checks = {
         f"memory grows < {a.max_rss_growth:.0%}": verdict["rss_growth"] < a.max_rss_growth,
-        "frame time does not grow": blocks[-1] <= 1.25 * blocks[first_block],
         "no file handle leak": warm[-1][2] <= warm[0][2],
         "no thread leak": warm[-1][3] <= warm[0][3],
     }
+    if not a.no_time_check:
+        checks["frame time does not grow"] = blocks[-1] <= 1.25 * blocks[first_block]
     verdict["checks"] = checks
     with open(os.path.join(a.out, "verdict.json"), "w") as f:
         json.dump(verdict, f, indent=1)
