@@ -68,6 +68,22 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
+// Keys name settings: a list or map used as a key ("{}: 1", "[a]: 1") is an error at load time.
+void require_name_keys(const YAML::Node& node, const std::string& prefix, const std::string& origin) {
+  if (node.IsMap()) {
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar())
+        throw ConfigError(origin, prefix.empty() ? "<root>" : prefix,
+                          "a key must be a name, found a list or map (line " + std::to_string(kv.first.Mark().line + 1) +
+                              ")");
+      const std::string name = kv.first.Scalar();
+      require_name_keys(kv.second, prefix.empty() ? name : prefix + "." + name, origin);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) require_name_keys(node[i], prefix + "[" + std::to_string(i) + "]", origin);
+  }
+}
+
 void collect_leaves(const YAML::Node& node, const std::string& prefix, std::vector<std::string>& out) {
   if (node.IsMap()) {
     for (const auto& kv : node) {
@@ -132,6 +148,7 @@ Config Config::parse(const std::string& yaml, const std::string& name, const std
     YAML::Node root = YAML::Load(yaml);
     if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
     if (!root.IsMap()) throw ConfigError(name, "<root>", "the top level must be a map of keys");
+    require_name_keys(root, "", name);
     c.impl_->root = root;
   } catch (const YAML::Exception& e) {
     throw ConfigError(name, "<file>", "not valid YAML (line " + std::to_string(e.mark.line + 1) + "): " + e.msg);
@@ -164,6 +181,7 @@ void Config::apply_override(const std::string& assignment) {
   } catch (const YAML::Exception& e) {
     throw ConfigError(origin, key, "value is not valid YAML: " + e.msg);
   }
+  require_name_keys(parsed, key, origin);
   // Walk down, creating maps; a scalar in the way is an error, not silently replaced.
   std::vector<YAML::Node> chain{impl_->root};
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {

@@ -107,6 +107,19 @@ TEST(Config, FileErrors) {
   EXPECT_NE(config_error([&] { Config::load(dir / "list.yaml"); }).find("map of keys"), std::string::npos);
 }
 
+// Found by fuzz_config: a list or map used as a key escaped as a yaml-cpp conversion error.
+TEST(Config, AKeyThatIsAListOrMapIsAClearError) {
+  auto msg = config_error([] { Config::parse("{}:\n    max_iterations: 12\n", "odd.yaml"); });
+  EXPECT_NE(msg.find("odd.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("a key must be a name"), std::string::npos) << msg;
+  msg = config_error([] { Config::parse("estimator:\n  [a, b]: 1\n", "odd.yaml"); });
+  EXPECT_NE(msg.find("'estimator'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("line 2"), std::string::npos) << msg;
+  Config c = Config::parse(kYaml, "walk.yaml");
+  EXPECT_NE(config_error([&] { c.apply_override("estimator={[x]: 1}"); }).find("a key must be a name"),
+            std::string::npos);
+}
+
 TEST(Config, DumpRoundTripsThroughParse) {
   const Config c = Config::parse(kYaml, "walk.yaml", {"sensor.imu.rate=400"});
   const Config d = Config::parse(c.dump(), "dump.yaml");

@@ -34,7 +34,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     navaid_link_device_tick(&dev, now);
     for (std::uint8_t a = 0; a < NAVAID_LINK_MAX_ACTUATORS; ++a) {
       const int level = navaid_link_device_output(&dev, a);
-      require(level >= -1000 && level <= 1000, "actuator output within [-1000, 1000]");
+      // Motors run at [0, 1000] per mille; the wheel's output is a steering angle, any i16.
+      if (dev.device_kind == NAVAID_LINK_DEVICE_WHEEL)
+        require(level >= -32768 && level <= 32767, "wheel output within i16");
+      else
+        require(level >= 0 && level <= NAVAID_LINK_MOTOR_LEVEL_MAX, "motor output within [0, 1000]");
       require(a < dev.actuator_count || level == 0, "no output on an actuator the device lacks");
     }
     const std::size_t k = navaid_link_device_tx(&dev, out, sizeof out);
