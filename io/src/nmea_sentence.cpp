@@ -355,8 +355,9 @@ struct NmeaParser::Impl {
     m.time_of_day = time_of_day(1);
     const auto day = integer(2, "day", 1, 31);
     const auto month = integer(3, "month", 1, 12);
-    // GPS time starts in 1980: an earlier year is a receiver clock that was never set.
-    const auto year = integer(4, "year", 1980, 9999);
+    // GPS time starts in 1980: an earlier year is a receiver clock that was never set. 2261 is
+    // the last whole year of the int64 nanosecond clock (fuzz_nmea_capture found the overflow).
+    const auto year = integer(4, "year", 1980, 2261);
     if (day && month && year) {
       if (*day <= days_in_month(*year, *month)) {
         m.date = NmeaDate{*year, *month, *day};

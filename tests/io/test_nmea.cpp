@@ -276,7 +276,10 @@ TEST(NmeaCorrupt, BadTimesAndDatesAreDropped) {
   EXPECT_FALSE(decode_one<NmeaRmc>(with_checksum("GPRMC,000000,A,4807.038,N,01131.000,E,0,0,0101-1,,"), &parser).date);
   EXPECT_FALSE(decode_one<NmeaZda>(with_checksum("GPZDA,201530.00,31,02,2002,00,00"), &parser).date);
   EXPECT_FALSE(decode_one<NmeaZda>(with_checksum("GPZDA,201530.00,01,01,1970,00,00"), &parser).date);
-  EXPECT_EQ(parser.stats().bad_fields, 5u);
+  // Found by fuzz_nmea_capture: year 8205 overflowed the int64 nanosecond clock.
+  EXPECT_FALSE(decode_one<NmeaZda>(with_checksum("GPZDA,201530.00,01,01,8205,00,00"), &parser).date);
+  EXPECT_TRUE(decode_one<NmeaZda>(with_checksum("GPZDA,201530.00,31,12,2261,00,00"), &parser).date);
+  EXPECT_EQ(parser.stats().bad_fields, 6u);
 }
 
 TEST(NmeaCorrupt, BinaryGarbageIsToleratedAndCounted) {
