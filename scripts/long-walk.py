@@ -9,7 +9,9 @@ OUT/long-walk.png and OUT/verdict.json, and exits 1 unless
   - the per-frame time does not grow (median of the last block <= 1.25 x the first after warm-up),
   - file descriptors and threads at the end are what they were after warm-up.
 Usage: long-walk.py --navaid BUILD/apps/navaid --out DIR [--laps N] [--mode features|images]
-                    [--max-rss-growth X] [--set KEY=VALUE ...]
+                    [--device NAME] [--max-rss-growth X] [--set KEY=VALUE ...]
+With --device (images only: a device maps from depth images) every layer runs: estimator, mapping,
+guidance, cues and speech.
 """
 import argparse
 import csv
@@ -46,7 +48,10 @@ def main():
     ap.add_argument("--max-rss-growth", type=float, default=0.10,
                     help="allowed growth of resident memory after warm-up (share)")
     ap.add_argument("--set", action="append", default=[], help="extra simulate --set (images: resolution)")
+    ap.add_argument("--device", help="navaid run --device NAME: the full device (needs --mode images)")
     a = ap.parse_args()
+    if a.device and a.mode != "images":
+        ap.error("--device needs --mode images (a device maps from depth images)")
     os.makedirs(a.out, exist_ok=True)
     rec, run = os.path.join(a.out, "recording"), os.path.join(a.out, "run")
 
@@ -59,8 +64,10 @@ def main():
     # The program is started without a shell; its output goes to a log.
     with open(os.path.join(a.out, "run.log"), "w") as log:
         start = time.monotonic()
-        p = subprocess.Popen([a.navaid, "run", "--recording", rec, "--out", run, "--no-plot"], stdout=log,
-                             stderr=subprocess.STDOUT)
+        cmd = [a.navaid, "run", "--recording", rec, "--out", run, "--no-plot"]
+        if a.device:
+            cmd += ["--device", a.device]
+        p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
         samples = []
         while p.poll() is None:
             try:
@@ -95,7 +102,7 @@ def main():
     rss0, rss_max = warm[0][1], max(s[1] for s in warm)
     first_block = int(a.warmup * a.blocks)
     verdict = {
-        "laps": a.laps, "mode": a.mode, "frames": len(ms), "wall_s": samples[-1][0],
+        "laps": a.laps, "mode": a.mode, "device": a.device, "frames": len(ms), "wall_s": samples[-1][0],
         "rss_after_warmup_mb": rss0 / 1024, "rss_max_mb": rss_max / 1024,
         "rss_growth": rss_max / rss0 - 1,
         "frame_ms_first_block": blocks[first_block], "frame_ms_last_block": blocks[-1],

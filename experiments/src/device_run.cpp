@@ -92,7 +92,8 @@ struct DeviceRun::Impl {
                                             : estimation::ImuNoise{}),
         map_queue(o.queue_capacity, o.drop_when_full),
         guide_queue(o.queue_capacity, o.drop_when_full),
-        newest(std::make_shared<MapSnapshot>()) {
+        newest(std::make_shared<MapSnapshot>()),
+        timeline(out_dir / "guidance_timeline.csv") {
     if (spec.speech == "text") speech_config.text_only = true;
     if (spec.speech != "off") speech = std::make_unique<interaction::SynthesizedSpeech>(speech_config);
     session = std::make_unique<interaction::CueSession>(generator, policy, *device, speech.get(), o.cue_sink);
@@ -100,6 +101,8 @@ struct DeviceRun::Impl {
       if (f.camera == camera.name) frame_at[f.t] = &f;
     plans_csv = open_csv(out / "plans.csv", "t_ns,planner,status,reason,length_m,expanded,time_ms,path");
     latency_csv = open_csv(out / "latency.csv", "frame_t_ns,cue_t_s,kind,latency_ms");
+    stages_csv = open_csv(out / "device_stages.csv",
+                          "t_ns,frame,mapped,mapping_ms,planning_ms,interaction_ms,action,reason,detail");
   }
 
   /// Runs `f`, naming the stage and the frame in its error.
@@ -172,7 +175,7 @@ struct DeviceRun::Impl {
     entries.emplace_back(g.command);
     in_stage("interaction", item, [&] {
       for (const auto& entry : entries) {
-        timeline.push_back(entry);
+        timeline.add(entry);
         for (const interaction::CueEvent& ev : session->feed(entry)) {
           const bool reaches_user = ev.outcome == interaction::CueOutcome::kSent || ev.outcome == interaction::CueOutcome::kSpoken;
           if (!reaches_user || ev.cue.t != e.t) continue;
@@ -201,10 +204,17 @@ struct DeviceRun::Impl {
       done.label_confidence.reset();
       done.class_probabilities.reset();
     }
-    FrameLog& l = log[e.t];
-    f.mapped = l.mapped;
-    f.times.mapping_ms = l.times.mapping_ms;
-    l = f;
+    // The frame's mapping half is logged (map_step ran first); its row is complete. Frames older
+    // than it still in the log were mapped but their guidance dropped (real time): not written.
+    if (const auto l = log.find(e.t); l != log.end()) {
+      f.mapped = l->second.mapped;
+      f.times.mapping_ms = l->second.times.mapping_ms;
+    }
+    log.erase(log.begin(), log.upper_bound(e.t));
+    stage_times[e.t] = f.times;
+    stages_csv << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{},{}\n", e.t, f.frame, f.mapped ? 1 : 0,
+                              f.times.mapping_ms, f.times.planning_ms, f.times.interaction_ms, f.action, f.reason,
+                              csv_field(f.detail));
   }
 
   /// The timeline's clock starts at the first estimate with a frame (speech.wav's zero).
@@ -331,8 +341,7 @@ struct DeviceRun::Impl {
   std::unique_ptr<GuidanceStage> stage;
   std::map<Timestamp, const RgbdFrame*> frame_at;
   std::map<Timestamp, std::unique_ptr<RgbdFrame>> added_frames;  // add_frame's, guarded by m
-  std::ofstream plans_csv, latency_csv;
-  std::vector<interaction::GuidanceTimelineEntry> timeline;
+  std::ofstream plans_csv, latency_csv, stages_csv;  // written as the frames go
   std::vector<double> mapping_ms, planning_ms, interaction_ms, latency_ms;
   std::size_t estimates = 0, without_frame = 0, plans = 0, plans_found = 0, map_counter = 0;
   std::optional<Timestamp> origin;
@@ -346,8 +355,9 @@ struct DeviceRun::Impl {
   std::mutex m;  // guards what both threads touch: newest, pending_events, log, first_error
   std::shared_ptr<const MapSnapshot> newest;
   std::vector<interaction::GuidanceTimelineEntry> pending_events;
-  std::map<Timestamp, FrameLog> log;
+  std::map<Timestamp, FrameLog> log;  // frames mapped, their guidance not yet done
   std::map<Timestamp, StageTimes> stage_times;
+  interaction::GuidanceTimelineWriter timeline;  // guidance_timeline.csv, as the frames go
   std::exception_ptr first_error;
 };
 
@@ -376,19 +386,8 @@ nlohmann::ordered_json DeviceRun::finish() {
   d.stop_threads();
   d.session->drain();
   const std::vector<interaction::CueEvent>& events = d.session->events();
-  for (auto* f : {&d.plans_csv, &d.latency_csv}) f->flush();
-  {
-    std::ofstream stages = open_csv(d.out / "device_stages.csv",
-                                    "t_ns,frame,mapped,mapping_ms,planning_ms,interaction_ms,action,reason,detail");
-    for (const auto& [t, f] : d.log) {
-      if (f.action.empty()) continue;  // real time: mapped, but its guidance was dropped
-      d.stage_times[t] = f.times;
-      stages << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{},{},{}\n", t, f.frame, f.mapped ? 1 : 0,
-                            f.times.mapping_ms, f.times.planning_ms, f.times.interaction_ms, f.action, f.reason,
-                            csv_field(f.detail));
-    }
-  }
-  interaction::write_guidance_timeline_csv(d.out / "guidance_timeline.csv", d.timeline);
+  for (auto* f : {&d.plans_csv, &d.latency_csv, &d.stages_csv}) f->flush();
+  d.timeline.close();
   interaction::write_cue_timeline_csv(d.out / "cues.csv", events);
   std::vector<std::string> spoken;
   for (const auto& e : events)
@@ -420,7 +419,7 @@ nlohmann::ordered_json DeviceRun::finish() {
   j["map_latency"] = stage_distribution(d.map_latency_ms);
   j["guidance"] = d.stage->summary();
   j["plans"] = {{"made", d.plans}, {"found", d.plans_found}};
-  j["cues"] = {{"timeline_entries", d.timeline.size()}, {"events", events.size()}, {"outcomes", counts},
+  j["cues"] = {{"timeline_entries", d.timeline.entries()}, {"events", events.size()}, {"outcomes", counts},
                {"spoken", spoken}, {"speech_wav_s", speech_s}};
   j["estimates"] = {{"with_frame", d.estimates}, {"without_frame", d.without_frame}};
   if (d.options.threaded)

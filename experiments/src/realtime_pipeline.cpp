@@ -244,6 +244,7 @@ void validate(const RealtimeOptions& options) {
 
 PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions& options) {
   validate(options);
+  if (!in.on_record) throw Error("real-time pipeline: on_record is required");
   if (in.source && !in.load_images) throw Error("real-time pipeline: image input needs an image loader");
 
   const auto run_start = Clock::now();
@@ -323,14 +324,18 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
           r.latency_ms = std::chrono::duration<double, std::milli>(now - it->second.arrival).count();
           in_flight.erase(it);
         }
+        // Estimates come in time order: a frame older than this one that is still here made none
+        // (the estimator skipped it); dropping it keeps a long run's memory flat.
+        in_flight.erase(in_flight.begin(), in_flight.lower_bound(e.t));
         estimator_ms.push_back(*r.estimator_ms);
         if (r.latency_ms) latency_ms.push_back(*r.latency_ms);
         r.estimate = std::move(e);
-        result.frames.push_back(std::move(r));
-        if (in.on_estimate) in.on_estimate(result.frames.back().estimate, arrival);
+        in.on_record(r);
+        ++result.frames;
+        if (in.on_estimate) in.on_estimate(r.estimate, arrival);
       }
       pending_ms = 0;
-      progress.update(result.frames.size());
+      progress.update(result.frames);
     }
   }  // joined
   if (const auto error = front_end.error()) std::rethrow_exception(error);
@@ -339,8 +344,9 @@ PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions&
     FrameRecord r;
     if (const auto it = in_flight.find(e.t); it != in_flight.end()) r.frontend = it->second.frontend;
     r.estimate = std::move(e);
-    result.frames.push_back(std::move(r));
-    if (in.on_estimate) in.on_estimate(result.frames.back().estimate, Clock::now());
+    in.on_record(r);
+    ++result.frames;
+    if (in.on_estimate) in.on_estimate(r.estimate, Clock::now());
   }
   progress.finish();
   result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();

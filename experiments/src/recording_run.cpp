@@ -30,6 +30,7 @@
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/experiments/map_session.hpp"
 #include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/experiments/run_output_stream.hpp"
 #include "navaid/experiments/run_topview.hpp"
 
 #include "navaid/experiments/device_run.hpp"
@@ -66,29 +67,6 @@ std::optional<AteSummary> ate_4dof(const std::vector<io::StampedPose>& trajector
   return r;
 }
 
-void write_estimates_csv(const std::filesystem::path& file, const std::vector<StateEstimate>& estimates) {
-  std::ofstream out(file);
-  if (!out) throw IoError(file.string(), "cannot write");
-  out << "t_ns,px,py,pz,qw,qx,qy,qz,vx,vy,vz,bgx,bgy,bgz,bax,bay,baz,mode,"
-         "cov_pxx,cov_pxy,cov_pxz,cov_pyy,cov_pyz,cov_pzz,cov_rxx,cov_rxy,cov_rxz,cov_ryy,cov_ryz,cov_rzz,"
-         "enu_yaw,enu_x,enu_y,enu_z\n";
-  for (const auto& s : estimates) {
-    const auto& P = s.covariance;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", s.t, s.T_W_B.t.x(), s.T_W_B.t.y(),
-                       s.T_W_B.t.z(), s.T_W_B.q.w(), s.T_W_B.q.x(), s.T_W_B.q.y(), s.T_W_B.q.z(), s.v_W.x(), s.v_W.y(),
-                       s.v_W.z(), s.b_g.x(), s.b_g.y(), s.b_g.z(), s.b_a.x(), s.b_a.y(), s.b_a.z(), to_string(s.mode));
-    for (int base : {3, 0})  // position block, then rotation block (StateEstimate order: rotation first)
-      for (int i = 0; i < 3; ++i)
-        for (int j = i; j < 3; ++j) out << fmt::format(",{}", P(base + i, base + j));
-    if (s.T_ENU_W) {
-      out << fmt::format(",{},{},{},{}", yaw_of(s.T_ENU_W->q), s.T_ENU_W->t.x(), s.T_ENU_W->t.y(), s.T_ENU_W->t.z());
-    } else {
-      out << ",,,,";
-    }
-    out << "\n";
-  }
-}
-
 // Where the estimator's features come from.
 enum class Input { kFeatures, kImages };
 
@@ -119,20 +97,17 @@ void thin_camera_frames(io::Recording& recording, const std::string& camera, dou
   recording.frames = std::move(kept);
 }
 
-/// The estimator's half of a frame's cost: camera input (loading + tracking) and the back end.
-double frontend_ms(const FrameRecord& r) { return r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0; }
-double estimator_ms_of(const FrameRecord& r) { return r.estimator_ms ? *r.estimator_ms : r.ms - frontend_ms(r); }
+double frontend_ms(const FrameTiming& r) { return r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0; }
 
 /// stages.csv: every stage's cost per frame (the device's stages empty where it skipped a frame).
-void write_stage_csv(const std::filesystem::path& file, const std::vector<FrameRecord>& frames,
+void write_stage_csv(const std::filesystem::path& file, const std::vector<FrameTiming>& frames,
                      const std::map<Timestamp, DeviceRun::StageTimes>& device) {
   std::ofstream out(file);
   if (!out) throw IoError(file.string(), "cannot write");
   out << "t_ns,frontend_ms,estimator_ms,mapping_ms,planning_ms,interaction_ms\n";
   for (const auto& r : frames) {
-    out << fmt::format("{},{},{:.4f}", r.estimate.t, r.frontend ? fmt::format("{:.4f}", frontend_ms(r)) : "",
-                       estimator_ms_of(r));
-    if (const auto it = device.find(r.estimate.t); it != device.end()) {
+    out << fmt::format("{},{},{:.4f}", r.t, r.frontend ? fmt::format("{:.4f}", frontend_ms(r)) : "", r.estimator_ms);
+    if (const auto it = device.find(r.t); it != device.end()) {
       out << fmt::format(",{:.4f},{:.4f},{:.4f}\n", it->second.mapping_ms, it->second.planning_ms,
                          it->second.interaction_ms);
     } else {
@@ -141,11 +116,11 @@ void write_stage_csv(const std::filesystem::path& file, const std::vector<FrameR
   }
 }
 
-nlohmann::ordered_json stage_summary(const std::vector<FrameRecord>& frames) {
+nlohmann::ordered_json stage_summary(const std::vector<FrameTiming>& frames) {
   std::vector<double> fe, est;
   for (const auto& r : frames) {
     if (r.frontend) fe.push_back(frontend_ms(r));
-    est.push_back(estimator_ms_of(r));
+    est.push_back(r.estimator_ms);
   }
   nlohmann::ordered_json j;
   j["frontend"] = stage_distribution(fe);
@@ -241,8 +216,12 @@ std::string run_recording(const RecordingRunOptions& a) {
     source.emplace(recording.calibration, frontend_config, camera, &load_tracking_images);
   }
   std::filesystem::create_directories(a.out);
+  // estimates.csv, trajectory.tum and timing.csv grow as the run goes; the run keeps a compact
+  // record of each frame only.
+  RunOutputStream stream(a.out, a.realtime);
 
-  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}, {}};
+  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}, {}, {}};
+  pipeline_input.on_record = [&](const FrameRecord& r) { stream.add(r); };
   if (source) {
     pipeline_input.source = &*source;
     pipeline_input.load_images = &load_tracking_images;
@@ -267,7 +246,6 @@ std::string run_recording(const RecordingRunOptions& a) {
     };
   }
   std::unique_ptr<DeviceRun> device_run;
-  std::vector<StateEstimate> seen;  // what the run made, kept for the files when a stage fails
   if (device) {
     const auto& cams = recording.calibration.cameras;
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
@@ -284,7 +262,6 @@ std::string run_recording(const RecordingRunOptions& a) {
                                              device_options);
     config.reject_unknown_keys();
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point arrival) {
-      seen.push_back(e);
       device_run->on_estimate(e, arrival);
     };
     if (device_options.predict_at_arrival)
@@ -299,7 +276,7 @@ std::string run_recording(const RecordingRunOptions& a) {
     if (!device_run) throw;
     // A stage failed: keep what the run made so far, and say where it stopped.
     std::ofstream(a.out / "error.txt") << e.what() << "\n";
-    write_estimates_csv(a.out / "estimates.csv", seen);
+    stream.flush();
     try {
       device_run->finish();
     } catch (const std::exception& flush_error) {
@@ -307,41 +284,16 @@ std::string run_recording(const RecordingRunOptions& a) {
     }
     throw;
   }
-  std::vector<StateEstimate> estimates;
+  stream.close();
+  const std::vector<RunEstimate>& estimates = stream.estimates();
   std::vector<double> frame_ms, estimator_ms;
-  for (const auto& r : result.frames) {
-    estimates.push_back(r.estimate);
+  for (const auto& r : stream.timings()) {
     frame_ms.push_back(r.ms);
-    // Replay: what the frame cost beyond tracking and loading is the estimator's.
-    estimator_ms.push_back(estimator_ms_of(r));
+    estimator_ms.push_back(r.estimator_ms);
   }
-
-  std::vector<io::StampedPose> poses;
+  std::vector<io::StampedPose> poses;  // trajectory.tum's
   for (const auto& e : estimates)
-    if (e.mode != EstimatorMode::kInitializing) poses.push_back({e.t, e.T_W_B});
-  io::write_tum_trajectory(a.out / "trajectory.tum", poses);
-  write_estimates_csv(a.out / "estimates.csv", estimates);
-  {
-    std::ofstream timing(a.out / "timing.csv");
-    // frontend_ms and image_load_ms stay empty for feature-level input; --realtime adds the
-    // estimator thread's share and the latency from the frame's arrival to its estimate; the
-    // estimator's stages come last (docs/estimator.md, "navaid run").
-    timing << "t_ns,ms,mode,frontend_ms,image_load_ms" << (a.realtime ? ",estimator_ms,latency_ms" : "")
-           << ",keyframe,solve_ms,covariance_ms,marginalization_ms\n";
-    for (const auto& r : result.frames) {
-      timing << fmt::format("{},{:.4f},{}", r.estimate.t, r.ms, to_string(r.estimate.mode));
-      if (const auto& ft = r.frontend)
-        timing << fmt::format(",{:.4f},{:.4f}", ft->track_ms, ft->load_ms);
-      else
-        timing << ",,";
-      if (a.realtime) {
-        timing << (r.estimator_ms ? fmt::format(",{:.4f}", *r.estimator_ms) : std::string(","));
-        timing << (r.latency_ms ? fmt::format(",{:.4f}", *r.latency_ms) : std::string(","));
-      }
-      timing << fmt::format(",{:d},{:.4f},{:.4f},{:.4f}\n", r.stages.keyframe ? 1 : 0, r.stages.solve_ms,
-                            r.stages.covariance_ms, r.stages.marginalization_ms);
-    }
-  }
+    if (e.mode != EstimatorMode::kInitializing) poses.push_back({e.pose.t, e.pose.T_W_B});
   std::ofstream(a.out / "config.yaml") << config.dump();
 
   const auto& st = estimator.statistics();
@@ -415,7 +367,7 @@ std::string run_recording(const RecordingRunOptions& a) {
                             {"estimator_p99", percentile(estimator_ms, 0.99)}};
   if (source) {
     std::vector<double> track_ms, load_ms, live_ms;
-    for (const auto& r : result.frames)
+    for (const auto& r : stream.timings())
       if (r.frontend) {
         track_ms.push_back(r.frontend->track_ms);
         load_ms.push_back(r.frontend->load_ms);
@@ -465,7 +417,7 @@ std::string run_recording(const RecordingRunOptions& a) {
     // The simulator's ground truth lives in ENU at the recording's origin (T_ENU_W = identity).
     std::vector<io::StampedPose> enu;
     for (const auto& e : estimates)
-      if (e.T_ENU_W && e.mode != EstimatorMode::kInitializing) enu.push_back({e.t, *e.T_ENU_W * e.T_W_B});
+      if (e.T_ENU_W && e.mode != EstimatorMode::kInitializing) enu.push_back({e.pose.t, *e.T_ENU_W * e.pose.T_W_B});
     nlohmann::ordered_json g;
     g["registered_frames"] = enu.size();
     std::vector<io::StampedPose> gt;
@@ -529,8 +481,8 @@ std::string run_recording(const RecordingRunOptions& a) {
                    {"actuator", std::string(interaction::to_string(device->actuator))},
                    {"speech", device->speech},
                    {"map_every", device->map_every}};
-    write_stage_csv(a.out / "stages.csv", result.frames, device_run->stage_times());
-    nlohmann::ordered_json stages = stage_summary(result.frames);
+    write_stage_csv(a.out / "stages.csv", stream.timings(), device_run->stage_times());
+    nlohmann::ordered_json stages = stage_summary(stream.timings());
     for (auto& [name, value] : d["stages"].items()) stages[name] = value;
     j["stages"] = stages;
     for (const char* key : {"latency", "map_latency", "guidance", "plans", "cues", "estimates", "device_thread"})

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 
+#include "navaid/core/errors.hpp"
 #include "navaid/io/event_stream.hpp"
 #include "navaid/experiments/progress.hpp"
 #include "navaid/experiments/estimator_pipeline.hpp"
@@ -12,15 +13,16 @@ namespace navaid::experiments {
 
 PipelineResult replay_pipeline(const PipelineInput& in) {
   using Clock = std::chrono::steady_clock;
+  if (!in.on_record) throw Error("replay pipeline: on_record is required");
   const auto run_start = Clock::now();
   PipelineResult result;
   std::map<Timestamp, FrontendTime> frontend_pending;  // tracked frames waiting for their estimate
   const auto take_frontend_time = [&](Timestamp t) {
-    const auto it = frontend_pending.find(t);
-    if (it == frontend_pending.end()) return std::optional<FrontendTime>();
-    const FrontendTime ft = it->second;
-    frontend_pending.erase(it);
-    return std::optional<FrontendTime>(ft);
+    std::optional<FrontendTime> ft;
+    if (const auto it = frontend_pending.find(t); it != frontend_pending.end()) ft = it->second;
+    // Estimates come in time order: older frames still here made none (the estimator skipped them).
+    frontend_pending.erase(frontend_pending.begin(), frontend_pending.upper_bound(t));
+    return ft;
   };
   io::SensorEventStream stream(in.recording);
   Progress progress(in.source ? "tracking and estimating" : "estimating", in.camera_frames);
@@ -55,18 +57,20 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
       r.stages = stages.at(i);  // one per estimate
       r.frontend = take_frontend_time(e.t);
       r.estimate = std::move(e);
-      result.frames.push_back(std::move(r));
-      if (in.on_estimate) in.on_estimate(result.frames.back().estimate, pending_arrival);
+      in.on_record(r);
+      ++result.frames;
+      if (in.on_estimate) in.on_estimate(r.estimate, pending_arrival);
     }
     pending_ms = 0;
-    progress.update(result.frames.size());
+    progress.update(result.frames);
   }
   for (auto& e : in.estimator.finish()) {
     FrameRecord r;
     r.frontend = take_frontend_time(e.t);
     r.estimate = std::move(e);
-    result.frames.push_back(std::move(r));
-    if (in.on_estimate) in.on_estimate(result.frames.back().estimate, Clock::now());
+    in.on_record(r);
+    ++result.frames;
+    if (in.on_estimate) in.on_estimate(r.estimate, Clock::now());
   }
   progress.finish();
   result.wall_s = std::chrono::duration<double>(Clock::now() - run_start).count();

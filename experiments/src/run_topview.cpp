@@ -29,15 +29,17 @@ void write_points(const fs::path& file, const std::vector<Point>& points) {
 
 }  // namespace
 
-void draw_run_topview(const fs::path& run_dir, const std::vector<StateEstimate>& estimates,
+void draw_run_topview(const fs::path& run_dir, const std::vector<RunEstimate>& estimates,
                       const std::vector<GroundTruthState>& groundtruth,
                       const std::optional<experiments::Similarity>& W_to_groundtruth, const std::string& title) {
   std::vector<Point> track, enu;
   for (const auto& e : estimates) {
     if (e.mode == EstimatorMode::kInitializing) continue;
-    if (e.T_ENU_W) enu.push_back({e.t, (*e.T_ENU_W * e.T_W_B).t, to_string(e.mode)});
-    if (W_to_groundtruth) track.push_back({e.t, *W_to_groundtruth * e.T_W_B.t, to_string(e.mode)});
-    else if (!e.T_ENU_W) track.push_back({e.t, e.T_W_B.t, to_string(e.mode)});
+    const Timestamp t = e.pose.t;
+    const SE3& T_W_B = e.pose.T_W_B;
+    if (e.T_ENU_W) enu.push_back({t, (*e.T_ENU_W * T_W_B).t, to_string(e.mode)});
+    if (W_to_groundtruth) track.push_back({t, *W_to_groundtruth * T_W_B.t, to_string(e.mode)});
+    else if (!e.T_ENU_W) track.push_back({t, T_W_B.t, to_string(e.mode)});
   }
   std::string frame = "W (estimator's world frame)";
   if (W_to_groundtruth) {

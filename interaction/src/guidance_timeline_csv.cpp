@@ -163,23 +163,34 @@ std::vector<GuidanceTimelineEntry> read_guidance_timeline_csv(const std::filesys
 }
 
 void write_guidance_timeline_csv(const std::filesystem::path& file, const std::vector<GuidanceTimelineEntry>& entries) {
-  std::ofstream out(file);
-  if (!out) throw IoError(file.string(), "cannot write");
-  out << fmt::format("{}\n", fmt::join(kColumns, ","));
-  for (const GuidanceTimelineEntry& entry : entries) {
-    if (const auto* c = std::get_if<GuidanceCommand>(&entry)) {
-      out << fmt::format("{},guidance,{},{},{},{},{},{},{},,\n", format_seconds(c->t), planning::to_string(c->action),
-                         planning::to_string(c->reason), number(c->confidence),
-                         c->heading_rad ? number(planning::rad_to_deg(*c->heading_rad)) : "",
-                         c->steering_rad ? number(planning::rad_to_deg(*c->steering_rad)) : "",
-                         c->rumble ? std::string(planning::to_string(*c->rumble)) : "",
-                         c->hand ? std::string(planning::to_string(*c->hand)) : "");
-    } else {
-      const SystemEvent& e = std::get<SystemEvent>(entry);
-      out << fmt::format("{},event,,,,,,,,{},{}\n", format_seconds(e.t), to_string(e.kind), quote(e.value));
-    }
+  GuidanceTimelineWriter writer(file);
+  for (const GuidanceTimelineEntry& entry : entries) writer.add(entry);
+  writer.close();
+}
+
+GuidanceTimelineWriter::GuidanceTimelineWriter(const std::filesystem::path& file) : name_(file.string()), out_(file) {
+  if (!out_) throw IoError(name_, "cannot write");
+  out_ << fmt::format("{}\n", fmt::join(kColumns, ","));
+}
+
+void GuidanceTimelineWriter::add(const GuidanceTimelineEntry& entry) {
+  if (const auto* c = std::get_if<GuidanceCommand>(&entry)) {
+    out_ << fmt::format("{},guidance,{},{},{},{},{},{},{},,\n", format_seconds(c->t), planning::to_string(c->action),
+                        planning::to_string(c->reason), number(c->confidence),
+                        c->heading_rad ? number(planning::rad_to_deg(*c->heading_rad)) : "",
+                        c->steering_rad ? number(planning::rad_to_deg(*c->steering_rad)) : "",
+                        c->rumble ? std::string(planning::to_string(*c->rumble)) : "",
+                        c->hand ? std::string(planning::to_string(*c->hand)) : "");
+  } else {
+    const SystemEvent& e = std::get<SystemEvent>(entry);
+    out_ << fmt::format("{},event,,,,,,,,{},{}\n", format_seconds(e.t), to_string(e.kind), quote(e.value));
   }
-  if (!out) throw IoError(file.string(), "write failed");
+  ++count_;
+}
+
+void GuidanceTimelineWriter::close() {
+  out_.close();
+  if (!out_) throw IoError(name_, "write failed");
 }
 
 }  // namespace navaid::interaction

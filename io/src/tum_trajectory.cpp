@@ -71,22 +71,42 @@ std::string format_tum_pose(const StampedPose& pose) {
   return line;
 }
 
+namespace {
+
+void check_next_pose(const std::string& name, std::size_t i, const StampedPose& p, Timestamp previous_t) {
+  if (!p.T_W_B.t.allFinite() || !p.T_W_B.q.coeffs().allFinite() || p.T_W_B.q.squaredNorm() == 0.0)
+    throw IoError(name, "pose " + std::to_string(i) + " at " + format_seconds(p.t) + " s has a non-finite value or a zero quaternion");
+  if (i > 0 && p.t <= previous_t)
+    throw IoError(name, "pose " + std::to_string(i) + ": timestamp " + format_seconds(p.t) +
+                            " s is not after the previous one (" + format_seconds(previous_t) + " s)");
+}
+
+}  // namespace
+
 void write_tum_trajectory(const std::filesystem::path& path, const std::vector<StampedPose>& poses) {
-  const std::string name = path.string();
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const auto& p = poses[i];
-    if (!p.T_W_B.t.allFinite() || !p.T_W_B.q.coeffs().allFinite() || p.T_W_B.q.squaredNorm() == 0.0)
-      throw IoError(name, "pose " + std::to_string(i) + " at " + format_seconds(p.t) + " s has a non-finite value or a zero quaternion");
-    if (i > 0 && p.t <= poses[i - 1].t)
-      throw IoError(name, "pose " + std::to_string(i) + ": timestamp " + format_seconds(p.t) +
-                              " s is not after the previous one (" + format_seconds(poses[i - 1].t) + " s)");
-  }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw IoError(name, "cannot open for writing");
-  out << "# timestamp tx ty tz qx qy qz qw\n";
-  for (const auto& p : poses) out << format_tum_pose(p) << '\n';
-  out.close();
-  if (!out) throw IoError(name, "write failed");
+  // Everything is checked before the file is touched: a bad trajectory leaves no half file.
+  for (std::size_t i = 0; i < poses.size(); ++i) check_next_pose(path.string(), i, poses[i], i > 0 ? poses[i - 1].t : 0);
+  TumTrajectoryWriter writer(path);
+  for (const auto& p : poses) writer.add(p);
+  writer.close();
+}
+
+TumTrajectoryWriter::TumTrajectoryWriter(const std::filesystem::path& path)
+    : name_(path.string()), out_(path, std::ios::binary | std::ios::trunc) {
+  if (!out_) throw IoError(name_, "cannot open for writing");
+  out_ << "# timestamp tx ty tz qx qy qz qw\n";
+}
+
+void TumTrajectoryWriter::add(const StampedPose& pose) {
+  check_next_pose(name_, count_, pose, last_t_);
+  out_ << format_tum_pose(pose) << '\n';
+  last_t_ = pose.t;
+  ++count_;
+}
+
+void TumTrajectoryWriter::close() {
+  out_.close();
+  if (!out_) throw IoError(name_, "write failed");
 }
 
 Recording read_tum_trajectory_recording(const std::filesystem::path& path) {

@@ -232,5 +232,30 @@ TEST(TumTrajectory, WriterRejectsBadInput) {
                   {"cannot open for writing"});
 }
 
+TEST(TumTrajectory, StreamingWriterWritesTheSameBytesAndChecksEachPose) {
+  NAVAID_REQUIRE_SHARED_DATA();
+  ScratchDir dir("tum-traj-stream");
+  const auto poses = read_tum_trajectory(real_dir() / "vislam_rp/stamped_traj_estimate0.txt");
+  write_tum_trajectory(dir / "whole.txt", poses);
+  {
+    TumTrajectoryWriter writer(dir / "streamed.txt");
+    for (const auto& p : poses) writer.add(p);
+    EXPECT_EQ(writer.poses(), poses.size());
+    writer.close();
+  }
+  EXPECT_EQ(read_text(dir / "whole.txt"), read_text(dir / "streamed.txt"));
+
+  TumTrajectoryWriter writer(dir / "bad.txt");
+  writer.add(poses[1]);
+  expect_io_error([&] { writer.add(poses[0]); }, "bad.txt", 0, {"pose 1", "not after"});
+  StampedPose nan = poses[2];
+  nan.T_W_B.q.w() = std::numeric_limits<double>::infinity();
+  expect_io_error([&] { writer.add(nan); }, "bad.txt", 0, {"pose 1", "non-finite"});
+  writer.add(poses[2]);  // a rejected pose is not written: the file stays a valid trajectory
+  writer.close();
+  EXPECT_EQ(read_tum_trajectory(dir / "bad.txt").size(), 2u);
+  expect_io_error([&] { TumTrajectoryWriter(dir / "missing-dir" / "t.txt"); }, "t.txt", 0, {"cannot open for writing"});
+}
+
 }  // namespace
 }  // namespace navaid::io

@@ -1,8 +1,9 @@
 #pragma once
 // How navaid run drives the estimator over a recording: deterministic single-threaded replay
 // (replay_pipeline.cpp, the default) or the real-time pipeline with the front end and the
-// estimator on their own threads (realtime_pipeline.cpp, --realtime). Both give one FrameRecord
-// per estimate, in output order.
+// estimator on their own threads (realtime_pipeline.cpp, --realtime). Both hand one FrameRecord
+// per estimate, in output order, to PipelineInput::on_record and keep none: a run's history is
+// its caller's to stream or keep (an hour-long walk makes ~100 000 of them).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,6 +45,9 @@ struct PipelineInput {
   estimation::ImageFeatureSource::ImageLoader load_images;
   bool imu_prediction = false;  ///< the front end's KLT prediction uses the back end's gyro bias
   std::size_t camera_frames = 0;  ///< for the progress bar
+  /// Called with every frame's record as it is made, before on_estimate (replay: on the one
+  /// thread; real time: on the estimator's thread). Required.
+  std::function<void(const FrameRecord&)> on_record;
   /// Called with every estimate as it is made (replay: in order on the one thread; real time: on
   /// the estimator's thread, after the estimate's latency is taken), e.g. to map as the run goes,
   /// with the wall-clock time the estimate's camera frame arrived (its loading and tracking
@@ -62,7 +66,7 @@ struct RealtimeOptions {
 };
 
 struct PipelineResult {
-  std::vector<FrameRecord> frames;
+  std::size_t frames = 0;  ///< records handed to on_record
   double wall_s = 0;  ///< from the first event to the last estimate
   /// Real time only: per-thread timing, latency, drops (null in replay).
   nlohmann::ordered_json realtime;
@@ -71,8 +75,10 @@ struct PipelineResult {
 /// UsageError naming the option (--realtime-speed, --realtime-queue) when it is unusable.
 void validate(const RealtimeOptions& options);
 
+/// Error when on_record is missing.
 PipelineResult replay_pipeline(const PipelineInput& in);
-/// Error when options are unusable; an error on either thread ends the run and is rethrown here.
+/// Error when options are unusable (or on_record is missing); an error on either thread ends the
+/// run and is rethrown here.
 PipelineResult realtime_pipeline(const PipelineInput& in, const RealtimeOptions& options);
 
 /// The gyro bias the front end's KLT prediction takes from a new estimate: the back end's, once it

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "navaid/core/messages.hpp"
-#include "navaid/core/state_estimate.hpp"
+#include "navaid/experiments/run_estimate.hpp"
 #include "navaid/experiments/trajectory_alignment.hpp"
 
 namespace navaid::experiments {
@@ -18,7 +18,7 @@ namespace navaid::experiments {
 /// unaligned, when GPS registered W: the simulator's ground truth is ENU); without it, ENU when
 /// GPS registered W, else W. Initializing frames are left out. Throws navaid::Error when the
 /// script fails (the caller decides whether that fails the run) or there is nothing to draw.
-void draw_run_topview(const std::filesystem::path& run_dir, const std::vector<StateEstimate>& estimates,
+void draw_run_topview(const std::filesystem::path& run_dir, const std::vector<RunEstimate>& estimates,
                       const std::vector<GroundTruthState>& groundtruth,
                       const std::optional<experiments::Similarity>& W_to_groundtruth, const std::string& title);
 

@@ -8,6 +8,7 @@
 
 #include "navaid/core/state_estimate.hpp"
 #include "navaid/experiments/nees.hpp"
+#include "navaid/experiments/run_estimate.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 
 namespace navaid::experiments {
@@ -21,6 +22,7 @@ SE3 interpolate_pose(const std::vector<io::StampedPose>& gt, Timestamp t);
 /// `first` exactly onto the ground truth at its time. Throws navaid::Error when first.t lies
 /// outside the ground truth's span.
 SE3 first_state_transform(const StateEstimate& first, const std::vector<io::StampedPose>& gt);
+SE3 first_state_transform(Timestamp t, const SE3& T_W_B, const std::vector<io::StampedPose>& gt);
 
 /// The estimates that are not initializing, expressed in the ground truth's world through the
 /// 4-DOF transform that puts the first of them exactly onto the ground truth at its time: yaw
@@ -28,6 +30,9 @@ SE3 first_state_transform(const StateEstimate& first, const std::vector<io::Stam
 /// covariances (right perturbation, body frame) stay as they are. Estimates outside the ground
 /// truth's time span are left out. Empty when nothing is left.
 std::vector<PoseWithCovariance> align_to_first_state(const std::vector<StateEstimate>& estimates,
+                                                     const std::vector<io::StampedPose>& gt);
+/// The same from what navaid run keeps of its estimates.
+std::vector<PoseWithCovariance> align_to_first_state(const std::vector<RunEstimate>& estimates,
                                                      const std::vector<io::StampedPose>& gt);
 
 /// Position and orientation NEES of `aligned` (from align_to_first_state) against the

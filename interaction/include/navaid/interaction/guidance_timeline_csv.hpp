@@ -12,8 +12,9 @@
 // (planning/guidance_command.hpp), confidence in [0, 1], the optional device fields empty when
 // absent. Event rows: event by name (system_event.hpp) and its value. Times never decrease.
 // '#' lines and blank lines are skipped; a value with a comma is double-quoted.
+#include <cstddef>
 #include <filesystem>
-#include <iosfwd>
+#include <fstream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -33,5 +34,21 @@ std::vector<GuidanceTimelineEntry> read_guidance_timeline_csv(const std::filesys
 std::vector<GuidanceTimelineEntry> parse_guidance_timeline_csv(std::istream& in, const std::string& name);
 
 void write_guidance_timeline_csv(const std::filesystem::path& file, const std::vector<GuidanceTimelineEntry>& entries);
+
+/// write_guidance_timeline_csv one entry at a time, for runs that write the timeline as it is made
+/// (the same bytes; a long run keeps none of it). IoError naming the file when it cannot be
+/// created (constructor) or a write failed (close()).
+class GuidanceTimelineWriter {
+ public:
+  explicit GuidanceTimelineWriter(const std::filesystem::path& file);
+  void add(const GuidanceTimelineEntry& entry);
+  void close();
+  std::size_t entries() const { return count_; }
+
+ private:
+  std::string name_;
+  std::ofstream out_;
+  std::size_t count_ = 0;
+};
 
 }  // namespace navaid::interaction

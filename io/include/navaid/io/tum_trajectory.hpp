@@ -2,7 +2,9 @@
 // TUM trajectory files: one pose per line, "timestamp tx ty tz qx qy qz qw" (seconds, metres,
 // Hamilton quaternion with w last), blank-separated, '#' comment lines. Used for ground truth and
 // for every trajectory navaid writes (run folders), and read by evo / rpg_trajectory_evaluation.
+#include <cstddef>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +35,25 @@ std::vector<StampedPose> read_tum_trajectory(const std::filesystem::path& path);
 /// double. Hence write -> read -> write is byte-identical. Throws IoError when the file cannot be
 /// written, a value is not finite or timestamps are not strictly increasing.
 void write_tum_trajectory(const std::filesystem::path& path, const std::vector<StampedPose>& poses);
+
+/// write_tum_trajectory one pose at a time, for runs that write their trajectory as it is made
+/// (the same bytes). add() throws IoError, naming the file and the pose, on the same faults;
+/// close() (or the destructor, which does not throw) flushes.
+class TumTrajectoryWriter {
+ public:
+  /// Creates (truncates) the file and writes the header; IoError when it cannot.
+  explicit TumTrajectoryWriter(const std::filesystem::path& path);
+  void add(const StampedPose& pose);
+  /// Flushes and closes; IoError when the writes failed.
+  void close();
+  std::size_t poses() const { return count_; }
+
+ private:
+  std::string name_;
+  std::ofstream out_;
+  std::size_t count_ = 0;
+  Timestamp last_t_ = 0;
+};
 
 /// One line of write_tum_trajectory, without the newline.
 std::string format_tum_pose(const StampedPose& pose);
