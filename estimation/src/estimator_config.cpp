@@ -90,6 +90,8 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.gps_mode = parse_enum(c.get_string("estimator.gps.mode", "joint", {"joint", "decoupled"}), gps_mode_names,
                           gps_modes);
   e.gps_multipath_fraction = c.get_double("estimator.gps.multipath_fraction", e.gps_multipath_fraction, {0, 0.95});
+  e.gps_outlier_gate = c.get_double("estimator.gps.outlier_gate", e.gps_outlier_gate, {0, 1e6});
+  e.gps_max_outlier_s = c.get_double("estimator.gps.max_outlier", e.gps_max_outlier_s, {0, 1e4});
   e.gps_registration_fixes =
       static_cast<int>(c.get_int("estimator.gps.registration_fixes", e.gps_registration_fixes, 0, 1000000));
   read_mag(c, e);

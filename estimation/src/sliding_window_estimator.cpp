@@ -149,6 +149,7 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
       mag_sigma_yaw(o.mag_sigma_yaw),
       mag_referenced(o.mag_referenced),
       mag_heading_off_since(o.mag_heading_off_since),
+      gps_outlier_since(o.gps_outlier_since),
       mag_prior(o.mag_prior ? std::make_shared<MarginalizationPrior>(*o.mag_prior) : nullptr),
       tracks(o.tracks),
       imu(o.imu),

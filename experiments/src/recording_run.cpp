@@ -420,6 +420,7 @@ std::string run_recording(const RecordingRunOptions& a) {
       if (e.T_ENU_W && e.mode != EstimatorMode::kInitializing) enu.push_back({e.pose.t, *e.T_ENU_W * e.pose.T_W_B});
     nlohmann::ordered_json g;
     g["registered_frames"] = enu.size();
+    g["outlier_fixes"] = st.gps_outliers;  // left out by the innovation gate (estimator.gps.outlier_gate)
     std::vector<io::StampedPose> gt;
     for (const auto& s : recording.groundtruth) gt.push_back({s.t, s.T_W_B});
     const auto error = enu_position_error(enu, gt);

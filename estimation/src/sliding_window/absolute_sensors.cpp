@@ -34,7 +34,42 @@ void SlidingWindowEstimator::Impl::attach_gps(WindowState& s) {
   if (!pending_fixes.empty() && pending_fixes.front().t <= s.t + tolerance) {
     s.gps = pending_fixes.front();
     pending_fixes.pop_front();
+    if (gps_outlier(*s.gps, s)) {
+      s.gps.reset();
+      ++stats.gps_outliers;
+    }
   }
+}
+
+bool SlidingWindowEstimator::Impl::gps_outlier(const GpsFix& fix, const WindowState& s) {
+  if (cfg.gps_outlier_gate <= 0) return false;
+  // T_ENU_W as the window holds it (joint) or as last registered (decoupled); none yet: no gate.
+  SE3 T_ENU_W;
+  if (cfg.gps_mode == GpsMode::kJoint && enu_registered) {
+    T_ENU_W = SE3(Mat3(Eigen::AngleAxisd(enu_alignment[0], Vec3::UnitZ())),
+                  Vec3(enu_alignment[1], enu_alignment[2], enu_alignment[3]));
+  } else if (cfg.gps_mode == GpsMode::kDecoupled && decoupled_T_ENU_W) {
+    T_ENU_W = *decoupled_T_ENU_W;
+  } else {
+    return false;
+  }
+  // The state here is the IMU's prediction (not yet solved): the fix is judged before it can pull.
+  Vec3 innovation = fix_enu(fix) - T_ENU_W * (s.T_W_B() * gps_lever_arm_B);
+  const WindowState* previous = last_gps_bias_state ? state(*last_gps_bias_state) : nullptr;
+  if (previous && cfg.gps_multipath_fraction > 0) {
+    const double phi = std::exp(-ns_to_seconds(s.t - previous->t) / cfg.gps_correlation_time_s);
+    innovation -= phi * Vec3(previous->gps_bias[0], previous->gps_bias[1], previous->gps_bias[2]);
+  }
+  const Mat3 S = (1.0 + cfg.gps_multipath_fraction) * fix.covariance_enu;
+  const Eigen::LDLT<Mat3> ldlt(S);
+  if (ldlt.info() != Eigen::Success || !innovation.allFinite()) return false;
+  const double d2 = innovation.dot(ldlt.solve(innovation));
+  if (d2 <= cfg.gps_outlier_gate) {
+    gps_outlier_since.reset();
+    return false;
+  }
+  if (!gps_outlier_since) gps_outlier_since = s.t;
+  return ns_to_seconds(s.t - *gps_outlier_since) <= cfg.gps_max_outlier_s;
 }
 
 void SlidingWindowEstimator::Impl::start_gps_bias(WindowState& s) {

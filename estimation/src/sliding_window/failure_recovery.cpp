@@ -43,6 +43,7 @@ void SlidingWindowEstimator::Impl::clear_window(bool new_map_frame) {
   decoupled_T_ENU_W.reset();
   mag_referenced = false;
   mag_heading_off_since.reset();
+  gps_outlier_since.reset();
   mag_prior.reset();
   last_estimate.reset();
   confirmed.clear();

@@ -179,6 +179,7 @@ struct SlidingWindowEstimator::Impl {
   bool mag_referenced = false;
   double mag_alignment[kEnuAlignmentSize] = {0, 0, 0, 0};
   std::optional<Timestamp> mag_heading_off_since;  ///< first state whose field heading disagreed
+  std::optional<Timestamp> gps_outlier_since;      ///< first fix of the current run of gated fixes
   std::shared_ptr<MarginalizationPrior> mag_prior;
 
   // The poses' manifold, for the solve's problem and the covariance's tangent-space Jacobians.
@@ -227,6 +228,8 @@ struct SlidingWindowEstimator::Impl {
   Impl(const RigCalibration& rig, const EstimatorConfig& config, const std::string& camera_name,
        const std::optional<GeodeticOrigin>& geodetic_origin);
   void attach_gps(WindowState& s);
+  /// The innovation gate: whether a fix is to be left out (counts and times the run of them).
+  bool gps_outlier(const GpsFix& fix, const WindowState& s);
   void start_gps_bias(WindowState& s);
   void register_gps(const WindowState& s);
   /// T_ENU_W's Gaussian prior from a covariance of [yaw, t] (false when not positive definite).

@@ -170,6 +170,13 @@ struct EstimatorConfig {
   double gps_multipath_fraction = 0.0;
   /// Decoupled: register over the newest this many fixes (0: every fix so far).
   int gps_registration_fixes = 0;
+  /// Innovation gate (gps.outlier_gate): once W is registered, a fix whose squared Mahalanobis
+  /// distance from the antenna position the state predicts (under the fix's covariance, plus the
+  /// multipath share) exceeds this is not used (0: off; 16.27 = chi2(3) at 99.9 %): a jump, not a
+  /// walk. Fixes that keep disagreeing for longer than gps_max_outlier_s are used again (the
+  /// state, not the fixes, has drifted).
+  double gps_outlier_gate = 16.27;
+  double gps_max_outlier_s = 20.0;
 
   // Magnetometer (factors.mag). The field of a sample, calibrated as soft_iron^-1 (m - hard_iron),
   // is compared in heading with the reference field (ENU, declination included) [T].

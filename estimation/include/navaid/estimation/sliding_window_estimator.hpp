@@ -98,6 +98,8 @@ struct EstimatorStatistics {
   /// States whose magnetometer field failed the disturbance test (strength or inclination off
   /// the reference's: estimator.mag.max_norm_deviation, max_inclination_deviation).
   std::size_t mag_disturbed = 0;
+  /// GPS fixes not used: too far from the registered state's prediction (estimator.gps.outlier_gate).
+  std::size_t gps_outliers = 0;
   /// Failure detection (estimator.failure.*): solves found implausible, the last reason (with its
   /// time), window restarts from the last good estimate (map frame kept) and re-initializations
   /// in a new map frame (W moved: consumers must drop what they built in the old one).
