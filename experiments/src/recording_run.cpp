@@ -52,10 +52,7 @@ struct AteSummary {
 /// truth (compute_ate): roll and pitch are observable through gravity, the rest of
 /// the estimator's W frame is arbitrary. Initializing frames carry no estimate and are left out.
 std::optional<AteSummary> ate_4dof(const std::vector<io::StampedPose>& trajectory,
-                                   const std::vector<GroundTruthState>& groundtruth) {
-  std::vector<io::StampedPose> gt;
-  gt.reserve(groundtruth.size());
-  for (const auto& g : groundtruth) gt.push_back({g.t, g.T_W_B});
+                                   const std::vector<io::StampedPose>& gt) {
   const auto pairs = associate_poses(trajectory, gt);
   if (pairs.size() < 3) return std::nullopt;
   const auto ate = compute_ate(pairs, {AlignmentMode::kPosYaw, 0});
@@ -285,13 +282,19 @@ std::string run_recording(const RecordingRunOptions& a) {
     throw;
   }
   stream.close();
+  // The walk is over; what follows reads the whole run at once (scripts/long-walk.py tells the
+  // two phases apart by this line).
+  spdlog::info("{} frames estimated; evaluating the run", stream.estimates().size());
   const std::vector<RunEstimate>& estimates = stream.estimates();
   std::vector<double> frame_ms, estimator_ms;
+  frame_ms.reserve(stream.timings().size());
+  estimator_ms.reserve(stream.timings().size());
   for (const auto& r : stream.timings()) {
     frame_ms.push_back(r.ms);
     estimator_ms.push_back(r.estimator_ms);
   }
   std::vector<io::StampedPose> poses;  // trajectory.tum's
+  poses.reserve(estimates.size());
   for (const auto& e : estimates)
     if (e.mode != EstimatorMode::kInitializing) poses.push_back({e.pose.t, e.pose.T_W_B});
   std::ofstream(a.out / "config.yaml") << config.dump();
@@ -384,7 +387,11 @@ std::string run_recording(const RecordingRunOptions& a) {
     j["frontend"] = {{"frames_tracked", source->frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
   }
   std::string ate_text = "no ground truth";
-  const auto ate = ate_4dof(poses, recording.groundtruth);
+  // The ground truth's poses, once for every measure below (an hour's is ~50 MB).
+  std::vector<io::StampedPose> gt;
+  gt.reserve(recording.groundtruth.size());
+  for (const auto& g : recording.groundtruth) gt.push_back({g.t, g.T_W_B});
+  const auto ate = ate_4dof(poses, gt);
   if (ate) {
     j["ate"] = {{"alignment", "posyaw (4-DOF: yaw + translation)"},
                 {"rmse_m", ate->rmse_m},
@@ -398,8 +405,6 @@ std::string run_recording(const RecordingRunOptions& a) {
     // Consistency: NEES in the frame of the estimator's first state (the one its covariance grows
     // from); averaged over this run's frames (correlated in time: indicative; average the values
     // of independent seeds, e.g. with navaid ablate, for the chi-square test).
-    std::vector<io::StampedPose> gt;
-    for (const auto& g : recording.groundtruth) gt.push_back({g.t, g.T_W_B});
     const auto aligned = align_to_first_state(estimates, gt);
     if (!aligned.empty()) {
       const auto nees = first_state_nees(aligned, gt);
@@ -421,8 +426,6 @@ std::string run_recording(const RecordingRunOptions& a) {
     nlohmann::ordered_json g;
     g["registered_frames"] = enu.size();
     g["outlier_fixes"] = st.gps_outliers;  // left out by the innovation gate (estimator.gps.outlier_gate)
-    std::vector<io::StampedPose> gt;
-    for (const auto& s : recording.groundtruth) gt.push_back({s.t, s.T_W_B});
     const auto error = enu_position_error(enu, gt);
     if (error) {
       g["first_registered_s"] = ns_to_seconds(enu.front().t - recording.imu.front().t);
