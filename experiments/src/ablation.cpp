@@ -61,6 +61,8 @@ struct Reader {
 
   void no_unknown_keys(const YAML::Node& n, const std::string& key, std::set<std::string> known) const {
     for (const auto& kv : n) {
+      // A list, a map or a tagged empty node as a key (found by fuzz_tables) is no name.
+      if (!kv.first.IsScalar()) fail(key.empty() ? "<root>" : key, "a key must be a name, not a list, map or empty node");
       const std::string k = kv.first.as<std::string>();
       if (!known.count(k)) fail(key.empty() ? k : key + "." + k, "unknown key");
     }
@@ -172,6 +174,7 @@ AblationMatrix read_ablation_matrix(const fs::path& file) {
     rec.name = r.name(n["name"], key + ".name");
     if (n["path"].IsDefined() == n["simulate"].IsDefined()) r.fail(key, "needs exactly one of 'path' and 'simulate'");
     if (n["path"]) {
+      if (!n["path"].IsScalar()) r.fail(key + ".path", "must be a path");
       fs::path p = n["path"].as<std::string>();
       rec.path = p.is_absolute() ? p : file.parent_path() / p;
     } else {

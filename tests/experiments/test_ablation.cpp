@@ -93,6 +93,10 @@ TEST(Ablation, BadMatrixFilesNameTheKey) {
       {"recordings: [{name: r, path: x}]\nvariants: [{name: a, set: [nokey]}]\n", "variants[0].set[0]"},
       {"recordings: [{name: r, path: x}]\nvariants: [{name: a}]\nseeds: [1, -2]\n", "seeds[1]"},
       {"recordings: [{name: r, path: x}]\nvariants: [{name: a}]\nseed: [1]\n", "seed"},
+      // Found by fuzz_tables: keys and paths that are not plain scalars escaped as yaml-cpp errors.
+      {"recordings: [{name: r, simulate: {scenario: s,!set: [a=b]}}]\nvariants: [{name: a}]\n", "recordings[0].simulate"},
+      {"recordings: [{name: r, path: x, [a]: 1}]\nvariants: [{name: a}]\n", "recordings[0]"},
+      {"recordings: [{name: r, path: {a: 1}}]\nvariants: [{name: a}]\n", "recordings[0].path"},
   };
   for (const auto& [text, key] : cases) {
     write_text(dir / "m.yaml", text);
