@@ -8,6 +8,7 @@
 #include "input_option.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/recording_summary.hpp"
+#include "navaid/io/ros_bag.hpp"
 
 namespace navaid::cli {
 namespace {
@@ -140,11 +141,21 @@ void add_info_command(CLI::App& app) {
       if (*json) std::cout << all.dump(2) << "\n";
       return;
     }
+    if (kind == io::InputKind::kRosBag && !*json) {  // the topics first: reading may ask to name one
+      std::cout << fmt::format("{:<48} {:<28} {:>9}\n", "topic", "type", "messages");
+      for (const auto& t : io::list_ros_bag_topics(input->path))
+        std::cout << fmt::format("{:<48} {:<28} {:>9}\n", t.topic, t.type, t.messages);
+    }
     const auto summary = io::summarize(io::read_input(input->path, kind));
-    if (*json)
-      std::cout << summary_json(summary).dump(2) << "\n";
-    else
-      print_summary(summary);
+    if (*json) {
+      auto j = summary_json(summary);
+      if (kind == io::InputKind::kRosBag)
+        for (const auto& t : io::list_ros_bag_topics(input->path))
+          j["topics"].push_back({{"topic", t.topic}, {"type", t.type}, {"messages", t.messages}});
+      std::cout << j.dump(2) << "\n";
+      return;
+    }
+    print_summary(summary);
   });
 }
 

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "bag_options.hpp"
 #include "commands.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
@@ -22,6 +23,7 @@ struct RunArgs {
   experiments::RealtimeOptions realtime_options;
   std::size_t device_queue = 8;
   bool no_plot = false;
+  BagOptions bag;
 };
 
 void run(const RunArgs& a) {
@@ -40,6 +42,8 @@ void run(const RunArgs& a) {
   o.realtime_options = a.realtime_options;
   o.device_queue = a.device_queue;
   o.plot = !a.no_plot;
+  o.bag = a.bag.conversion();
+  o.bag_options_given = a.bag.given();
   std::cout << experiments::run_recording(o);
 }
 
@@ -49,7 +53,8 @@ void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run the sliding-window estimator on a recording (features or images)");
   auto a = std::make_shared<RunArgs>();
   cmd->add_option("--recording", a->recording,
-                  "Recording: navaid (feature observations or images), EuRoC or TUM RGB-D folder");
+                  "Recording: navaid (feature observations or images), EuRoC or TUM RGB-D folder, or a ROS bag (converted "
+                  "into OUT/recording first, docs/ros.md)");
   cmd->add_option("--out", a->out, "Run folder to write (trajectory.tum, estimates.csv, timing.csv, summary.json)");
   cmd->add_option("--config", a->config_file, "YAML configuration (estimator.* and frontend.* keys, docs/estimator.md)")
       ->check(CLI::ExistingFile);
@@ -70,6 +75,7 @@ void add_run_command(CLI::App& app) {
                                 "With --realtime: tracked frames that may wait for the estimator")
                     ->capture_default_str();
   cmd->add_flag("--no-plot", a->no_plot, "Do not draw topview.png");
+  a->bag.add_to(*cmd);
   cmd->callback([a, speed, queue] {
     if (!a->realtime && (speed->count() > 0 || queue->count() > 0))
       throw UsageError("--realtime-speed and --realtime-queue need --realtime");

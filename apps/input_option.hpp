@@ -14,10 +14,10 @@ struct InputOption {
   std::string format;
 
   void add_to(CLI::App& cmd) {
-    cmd.add_option("input", path, "Recording folder, EuRoC/TUM RGB-D folder, NMEA capture or TUM trajectory")
+    cmd.add_option("input", path, "Recording folder, EuRoC/TUM RGB-D folder, NMEA capture, TUM trajectory or ROS bag")
         ->required();
     cmd.add_option("--format", format, "Force the input kind instead of detecting it")
-        ->check(CLI::IsMember({"navaid", "euroc", "tum-rgbd", "nmea", "tum-trajectory"}));
+        ->check(CLI::IsMember({"navaid", "euroc", "tum-rgbd", "nmea", "tum-trajectory", "ros-bag"}));
   }
 
   io::InputKind kind() const {

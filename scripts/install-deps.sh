@@ -21,6 +21,10 @@ PACKAGES=(
   libespeak-ng-dev espeak-ng-data
   libpocketsphinx-dev libsphinxbase-dev pocketsphinx-en-us
   socat
+  librosbag-storage-dev libroslz4-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev
+  libvisualization-msgs-dev
+  python3-rosbag python3-roslz4 python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-std-msgs
+  python3-tf2-msgs python3-visualization-msgs
   chromium
   libgtest-dev libgmock-dev libbenchmark-dev
   clang clang-14 libfuzzer-14-dev llvm-14

@@ -131,11 +131,8 @@ double stage_total_s(const nlohmann::ordered_json& stages) {
   return total;
 }
 
-}  // namespace
-
-std::string run_recording(const RecordingRunOptions& a) {
-  if (a.recording.empty()) throw UsageError("--recording is required");
-  if (a.out.empty()) throw UsageError("--out is required");
+// The run on a recording folder (run_recording converts a bag into one first).
+std::string run_recording_folder(const RecordingRunOptions& a) {
   if (a.realtime) validate(a.realtime_options);
   const Config& config = a.config;
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
@@ -163,6 +160,9 @@ std::string run_recording(const RecordingRunOptions& a) {
                 "estimator needs a gyro");
   if (recording.calibration.cameras.empty())
     throw Error(a.recording.string() + ": no camera in the calibration; the estimator needs one");
+  if (!recording.calibration.imu)
+    throw Error(a.recording.string() + ": no IMU noise densities in the calibration; the estimator needs them (for a "
+                "ROS bag: --imu-noise KALIBR_IMU.yaml)");
   // The estimator's camera (its default: the rig's first); the front end tracks the same one.
   const std::string camera = recording.calibration.cameras.front().name;
   if (camera_rate_hz > 0) thin_camera_frames(recording, camera, camera_rate_hz);
@@ -514,6 +514,31 @@ std::string run_recording(const RecordingRunOptions& a) {
       a.out.string(), estimates.size(), input == Input::kImages ? "images" : "features", st.keyframes,
       100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(), percentile(frame_ms, 0.5),
       frontend_text, ate_text + device_text);
+}
+
+}  // namespace
+
+std::string run_recording(const RecordingRunOptions& options) {
+  if (options.recording.empty()) throw UsageError("--recording is required");
+  if (options.out.empty()) throw UsageError("--out is required");
+  const bool bag = std::filesystem::is_regular_file(options.recording) && io::is_ros_bag(options.recording);
+  if (!bag) {
+    if (options.bag_options_given)
+      throw UsageError("the ROS bag options (--topic, --topics, --bag-preset, --camchain, --imu-noise, "
+                       "--depth-pair-window) need a bag as --recording; " + options.recording.string() + " is not one");
+    return run_recording_folder(options);
+  }
+  // The bag's images are extracted once, into a navaid recording inside the run folder.
+  RecordingRunOptions a = options;
+  a.recording = options.out / "recording";
+  io::RosBagConversion conversion = options.bag;
+  conversion.overwrite = true;
+  const io::Recording converted = io::convert_ros_bag(options.recording, a.recording, conversion);
+  spdlog::info("{}: converted into {} ({} frames, {} imu, {} warnings)", options.recording.string(),
+               a.recording.string(), converted.frames.size(), converted.imu.size(), converted.report.total());
+  for (const auto& w : converted.report.warnings)
+    spdlog::warn("{}: {}{}", w.source, w.message, w.count > 1 ? fmt::format(" (x{})", w.count) : "");
+  return run_recording_folder(a);
 }
 
 }  // namespace navaid::experiments

@@ -8,6 +8,7 @@
 #include "navaid/io/euroc.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/nmea.hpp"
+#include "navaid/io/ros_bag.hpp"
 #include "navaid/io/text_file.hpp"
 #include "navaid/io/tum_rgbd.hpp"
 #include "navaid/io/tum_trajectory.hpp"
@@ -17,12 +18,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::array<std::pair<InputKind, std::string_view>, 6> kNames{{
+constexpr std::array<std::pair<InputKind, std::string_view>, 7> kNames{{
     {InputKind::kNavaidRecording, "navaid"},
     {InputKind::kEuroc, "euroc"},
     {InputKind::kTumRgbd, "tum-rgbd"},
     {InputKind::kNmeaCapture, "nmea"},
     {InputKind::kTumTrajectory, "tum-trajectory"},
+    {InputKind::kRosBag, "ros-bag"},
     {InputKind::kCollection, "collection"},
 }};
 
@@ -94,10 +96,11 @@ InputKind detect_input(const fs::path& path) {
                   "not a recording: expected recording.yaml (navaid), mav0/ (EuRoC), rgb.txt + depth.txt "
                   "(TUM RGB-D), or NMEA capture / TUM trajectory files");
   }
+  if (is_ros_bag(path)) return InputKind::kRosBag;
   if (const auto kind = sniff_file(path)) return *kind;
   throw IoError(path.string(),
-                "not a recognised file: expected an NMEA 0183 capture ($..GGA/RMC lines) or a TUM trajectory "
-                "(timestamp tx ty tz qx qy qz qw)");
+                "not a recognised file: expected an NMEA 0183 capture ($..GGA/RMC lines), a TUM trajectory "
+                "(timestamp tx ty tz qx qy qz qw) or a ROS 1 bag");
 }
 
 Recording read_input(const fs::path& path, std::optional<InputKind> kind) {
@@ -113,6 +116,8 @@ Recording read_input(const fs::path& path, std::optional<InputKind> kind) {
       return read_nmea_capture(path);
     case InputKind::kTumTrajectory:
       return read_tum_trajectory_recording(path);
+    case InputKind::kRosBag:
+      return read_ros_bag(path);
     case InputKind::kCollection:
       break;
   }
@@ -121,6 +126,9 @@ Recording read_input(const fs::path& path, std::optional<InputKind> kind) {
 
 Recording read_camera_recording(const std::filesystem::path& path, const std::string& what) {
   const InputKind kind = detect_input(path);
+  if (kind == InputKind::kRosBag)
+    throw IoError(path.string(), "is a ROS bag: convert it into a navaid recording first (navaid convert " +
+                                     path.filename().string() + " OUT_DIR), then use OUT_DIR");
   if (kind != InputKind::kNavaidRecording && kind != InputKind::kEuroc && kind != InputKind::kTumRgbd)
     throw IoError(path.string(), "is a " + std::string(to_string(kind)) + ", not a recording with " + what +
                                      " (navaid, EuRoC or TUM RGB-D)");

@@ -7,6 +7,7 @@
 
 #include "navaid/core/config.hpp"
 #include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/io/ros_bag.hpp"
 
 namespace navaid::experiments {
 
@@ -17,6 +18,9 @@ struct RecordingRunOptions {
   RealtimeOptions realtime_options;
   std::size_t device_queue = 8;  ///< real time: estimates that may wait for the device thread
   bool plot = true;              ///< topview.png, cues.png, report.html
+  /// A ROS bag as the recording is first converted into out/recording with these options.
+  io::RosBagConversion bag;
+  bool bag_options_given = false;  ///< bag options for a recording that is not a bag are an error
 };
 
 /// Runs and writes the run folder; returns the one-line summary for the console. Throws
