@@ -17,6 +17,7 @@ struct BagOptions {
   std::string preset;
   std::filesystem::path camchain, imu_noise;
   double depth_pair_window_s = 0.0;
+  std::vector<double> depth_range;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--topic", topics,
@@ -24,7 +25,8 @@ struct BagOptions {
                    "mag, groundtruth); repeatable. Unnamed roles are found by message type");
     cmd.add_option("--topics", topics_file, "ROS bag: a YAML file of role: topic (and preset: NAME)")
         ->check(CLI::ExistingFile);
-    cmd.add_option("--bag-preset", preset, "ROS bag: a driver's topic names (realsense, structure-core)");
+    cmd.add_option("--bag-preset", preset, "ROS bag: a driver's topic names (realsense, realsense-d435i, realsense-d455 with their depth baselines, "
+                   "structure-core)");
     cmd.add_option("--camchain", camchain, "ROS bag: Kalibr camchain-imucam file for cam0 (intrinsics, T_cam_imu)")
         ->check(CLI::ExistingFile);
     cmd.add_option("--imu-noise", imu_noise, "ROS bag: Kalibr IMU file with the noise densities")
@@ -33,11 +35,13 @@ struct BagOptions {
                    "ROS bag: pair a depth image with the intensity image nearest in time within this many seconds "
                    "(default: half the frame period)")
         ->check(CLI::PositiveNumber);
+    cmd.add_option("--depth-range", depth_range, "ROS bag: the depth camera's working range MIN MAX [m]")
+        ->expected(2);
   }
 
   bool given() const {
     return !topics.empty() || !topics_file.empty() || !preset.empty() || !camchain.empty() || !imu_noise.empty() ||
-           depth_pair_window_s > 0;
+           depth_pair_window_s > 0 || !depth_range.empty();
   }
 
   io::RosBagConversion conversion() const {
@@ -60,6 +64,11 @@ struct BagOptions {
     c.read.depth_pair_window_s = depth_pair_window_s;
     c.camchain = camchain;
     c.imu_noise = imu_noise;
+    if (!depth_range.empty()) {
+      c.depth_min_m = depth_range[0];
+      c.depth_max_m = depth_range[1];
+      if (!(c.depth_max_m > 0)) throw UsageError("--depth-range MIN MAX: MAX must be positive");
+    }
     return c;
   }
 };

@@ -48,7 +48,7 @@ void add_convert_command(CLI::App& app) {
     if (kind == io::InputKind::kCollection)
       throw UsageError(input->path.string() + " is a folder of several captures or trajectories; convert one file at a time");
     if (kind != io::InputKind::kRosBag && bag->given())
-      throw UsageError("--topic, --topics, --bag-preset, --camchain, --imu-noise and --depth-pair-window are for ROS bags; " +
+      throw UsageError("--topic, --topics, --bag-preset, --camchain, --imu-noise, --depth-pair-window and --depth-range are for ROS bags; " +
                        input->path.string() + " is a " + std::string(io::to_string(kind)));
     if (kind == io::InputKind::kRosBag) {
       io::RosBagConversion conversion = bag->conversion();

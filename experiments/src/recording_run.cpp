@@ -525,7 +525,7 @@ std::string run_recording(const RecordingRunOptions& options) {
   if (!bag) {
     if (options.bag_options_given)
       throw UsageError("the ROS bag options (--topic, --topics, --bag-preset, --camchain, --imu-noise, "
-                       "--depth-pair-window) need a bag as --recording; " + options.recording.string() + " is not one");
+                       "--depth-pair-window, --depth-range) need a bag as --recording; " + options.recording.string() + " is not one");
     return run_recording_folder(options);
   }
   // The bag's images are extracted once, into a navaid recording inside the run folder.

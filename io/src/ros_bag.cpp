@@ -183,7 +183,7 @@ class TopicChooser {
 
  private:
   void apply_preset(const std::string& preset) {
-    for (const auto& [role, candidates] : ros_bag_preset(preset)) {
+    for (const auto& [role, candidates] : ros_bag_preset(preset).roles) {
       std::string& slot = member(role);
       if (!slot.empty()) continue;
       for (const auto& c : candidates)
@@ -759,6 +759,13 @@ Recording read_ros_bag(const fs::path& path, const RosBagReadOptions& options) {
         r.report.warn(topics.camera_info, "no transform between the IMU frame '" + imu_frame + "' and the camera frame '" +
                                               camera_frame + "' in /tf_static or /tf: T_B_C is identity (give a Kalibr "
                                               "camchain for the real one)");
+      }
+      if (!options.preset.empty()) {
+        const RosBagPreset preset = ros_bag_preset(options.preset);
+        camera->depth_min_m = preset.depth_min_m;
+        camera->depth_max_m = preset.depth_max_m;
+        camera->depth_baseline_m = preset.depth_baseline_m;
+        camera->depth_disparity_sigma_px = preset.depth_disparity_sigma_px;
       }
       r.calibration.cameras.push_back(*camera);
     } else {

@@ -1,4 +1,5 @@
 // A ROS bag written as a navaid recording (navaid convert, navaid run --recording X.bag).
+#include <algorithm>
 #include <string>
 
 #include "navaid/core/errors.hpp"
@@ -23,6 +24,11 @@ void apply_camchain(Recording& r, const fs::path& camchain) {
                         "is " + std::to_string(c.width) + "x" + std::to_string(c.height) + " but the bag's images are " +
                             std::to_string(bag.width) + "x" + std::to_string(bag.height));
     c.rate_hz = bag.rate_hz;
+    // A camchain has no depth model; the preset's (if any) stays.
+    c.depth_min_m = bag.depth_min_m;
+    c.depth_max_m = bag.depth_max_m;
+    c.depth_baseline_m = bag.depth_baseline_m;
+    c.depth_disparity_sigma_px = bag.depth_disparity_sigma_px;
   }
   c.name = r.frames.empty() ? c.name : r.frames.front().camera;
   r.calibration.cameras = {c};
@@ -47,6 +53,15 @@ Recording convert_ros_bag(const fs::path& bag, const fs::path& folder, const Ros
   if (!r.frames.empty() && r.calibration.cameras.empty())
     throw IoError(bag.string(), "has images but no camera_info: give the camera's calibration with --camchain "
                                 "(a Kalibr camchain-imucam file)");
+  if (conversion.depth_max_m > 0) {
+    if (conversion.depth_min_m < 0 || conversion.depth_min_m >= conversion.depth_max_m)
+      throw ConfigError("--depth-range", "depth_range", "the range's minimum must be >= 0 and below its maximum");
+    for (auto& c : r.calibration.cameras) c.depth_min_m = conversion.depth_min_m, c.depth_max_m = conversion.depth_max_m;
+  }
+  const bool has_depth = std::any_of(r.frames.begin(), r.frames.end(), [](const RgbdFrame& f) { return f.has_depth(); });
+  if (has_depth && !r.calibration.cameras.empty() && r.calibration.cameras.front().depth_max_m <= 0)
+    r.report.warn(bag.string(), "depth images but no working range: the front end leaves depth out (give --depth-range "
+                                "MIN MAX or a camera model's preset, e.g. --bag-preset realsense-d455)");
   if (!conversion.imu_noise.empty()) {
     r.calibration.imu = read_kalibr_imu(conversion.imu_noise);
   } else if (!r.imu.empty()) {

@@ -35,28 +35,36 @@ std::optional<RoleMember> find_role(std::string_view role) {
   return std::nullopt;
 }
 
-using Preset = std::vector<std::pair<std::string, std::vector<std::string>>>;
-
 // realsense2_camera (ROS 1) with align_depth on; the IMU is united (unite_imu_method) or published
 // as two topics. D435i and D455 publish the same names.
-Preset realsense_preset() {
-  return {{"image", {"/camera/color/image_raw", "/camera/color/image_raw/compressed"}},
-          {"depth", {"/camera/aligned_depth_to_color/image_raw", "/camera/aligned_depth_to_color/image_raw/compressedDepth"}},
-          {"camera_info", {"/camera/color/camera_info"}},
-          {"imu", {"/camera/imu"}},
-          {"gyro", {"/camera/gyro/sample"}},
-          {"accel", {"/camera/accel/sample"}}};
+RosBagPreset realsense_preset(double baseline_m, double min_m, double max_m) {
+  RosBagPreset p;
+  p.roles = {{"image", {"/camera/color/image_raw", "/camera/color/image_raw/compressed"}},
+             {"depth", {"/camera/aligned_depth_to_color/image_raw", "/camera/aligned_depth_to_color/image_raw/compressedDepth"}},
+             {"camera_info", {"/camera/color/camera_info"}},
+             {"imu", {"/camera/imu"}},
+             {"gyro", {"/camera/gyro/sample"}},
+             {"accel", {"/camera/accel/sample"}}};
+  // Intel's D400-series datasheet: baselines 50 mm (D435i) and 95 mm (D455), ideal ranges
+  // 0.3-3 m and 0.6-6 m, 0.08 px subpixel RMS.
+  p.depth_baseline_m = baseline_m;
+  p.depth_disparity_sigma_px = baseline_m > 0 ? 0.08 : 0.0;
+  p.depth_min_m = min_m;
+  p.depth_max_m = max_m;
+  return p;
 }
 
 // Occipital's Structure Core ROS driver: the visible camera, depth aligned to it, IMU combined or
 // as two topics.
-Preset structure_core_preset() {
-  return {{"image", {"/visible/image_raw"}},
-          {"depth", {"/depth_aligned/image"}},
-          {"camera_info", {"/visible/camera_info"}},
-          {"imu", {"/imu/combined"}},
-          {"gyro", {"/imu/gyro"}},
-          {"accel", {"/imu/accel"}}};
+RosBagPreset structure_core_preset() {
+  RosBagPreset p;
+  p.roles = {{"image", {"/visible/image_raw"}},
+             {"depth", {"/depth_aligned/image"}},
+             {"camera_info", {"/visible/camera_info"}},
+             {"imu", {"/imu/combined"}},
+             {"gyro", {"/imu/gyro"}},
+             {"accel", {"/imu/accel"}}};
+  return p;
 }
 
 }  // namespace
@@ -74,13 +82,18 @@ void set_ros_bag_topic(RosBagTopics& topics, std::string_view role, const std::s
   topics.*(*member) = topic;
 }
 
-std::vector<std::string> ros_bag_preset_names() { return {"realsense", "structure-core"}; }
+std::vector<std::string> ros_bag_preset_names() {
+  return {"realsense", "realsense-d435i", "realsense-d455", "structure-core"};
+}
 
-std::vector<std::pair<std::string, std::vector<std::string>>> ros_bag_preset(const std::string& name) {
-  if (name == "realsense" || name == "realsense-d435i" || name == "realsense-d455") return realsense_preset();
+RosBagPreset ros_bag_preset(const std::string& name) {
+  if (name == "realsense") return realsense_preset(0.0, 0.0, 0.0);
+  if (name == "realsense-d435i") return realsense_preset(0.050, 0.3, 3.0);
+  if (name == "realsense-d455") return realsense_preset(0.095, 0.6, 6.0);
   if (name == "structure-core") return structure_core_preset();
-  throw ConfigError("topics", "preset",
-                    "unknown preset '" + name + "' (presets: realsense, realsense-d435i, realsense-d455, structure-core)");
+  std::string names;
+  for (const auto& n : ros_bag_preset_names()) names += (names.empty() ? "" : ", ") + n;
+  throw ConfigError("topics", "preset", "unknown preset '" + name + "' (presets: " + names + ")");
 }
 
 RosBagTopicChoice read_ros_bag_topics_file(const std::filesystem::path& path) {

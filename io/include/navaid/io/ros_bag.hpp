@@ -33,12 +33,20 @@ struct RosBagTopics {
 std::vector<std::string_view> ros_bag_roles();
 /// Sets one role by name ("imu", "image", ...); UsageError-like ConfigError for an unknown role.
 void set_ros_bag_topic(RosBagTopics& topics, std::string_view role, const std::string& topic);
-/// Drivers' topic names: "realsense" (realsense2_camera on a D435i / D455: aligned depth, and the
-/// united /camera/imu or the separate gyro / accel topics), "structure-core" (Occipital's driver).
-/// Each role lists candidates; the first one present in the bag is used.
+/// A driver's topic names and what its datasheet says of the depth camera.
+struct RosBagPreset {
+  /// Role -> candidate topics; the first one present in the bag is used.
+  std::vector<std::pair<std::string, std::vector<std::string>>> roles;
+  double depth_min_m = 0, depth_max_m = 0;  ///< working range, 0 when the preset does not fix the model
+  double depth_baseline_m = 0;              ///< stereo baseline
+  double depth_disparity_sigma_px = 0;      ///< subpixel disparity noise (1 sigma)
+};
+/// "realsense" (realsense2_camera, ROS 1: colour, depth aligned to it, the united /camera/imu or
+/// the separate gyro / accel topics), "realsense-d435i" and "realsense-d455" (the same topics plus
+/// the model's baseline), "structure-core" (Occipital's driver).
 std::vector<std::string> ros_bag_preset_names();
 /// Throws ConfigError naming the preset when unknown.
-std::vector<std::pair<std::string, std::vector<std::string>>> ros_bag_preset(const std::string& name);
+RosBagPreset ros_bag_preset(const std::string& name);
 /// Reads a topics file: a YAML map role -> topic, or `preset: NAME` plus overrides. ConfigError
 /// naming the file and key for an unknown role or a non-string value.
 struct RosBagTopicChoice {
@@ -91,6 +99,9 @@ struct RosBagConversion {
   std::filesystem::path camchain;
   /// Kalibr IMU file: the noise densities the estimator needs (a bag has none).
   std::filesystem::path imu_noise;
+  /// The depth camera's working range [m] (a bag has none; a model's preset gives its datasheet
+  /// range). Without one the front end leaves depth out, and a warning says so.
+  double depth_min_m = 0, depth_max_m = 0;
   /// Replace the recording files in a non-empty output folder (old frame images are removed).
   bool overwrite = false;
 };
