@@ -142,9 +142,9 @@ void add_info_command(CLI::App& app) {
       return;
     }
     if (kind == io::InputKind::kRosBag && !*json) {  // the topics first: reading may ask to name one
-      std::cout << fmt::format("{:<48} {:<28} {:>9}\n", "topic", "type", "messages");
+      std::cout << fmt::format("{:<48} {:<40} {:>9}\n", "topic", "type", "messages");
       for (const auto& t : io::list_ros_bag_topics(input->path))
-        std::cout << fmt::format("{:<48} {:<28} {:>9}\n", t.topic, t.type, t.messages);
+        std::cout << fmt::format("{:<48} {:<40} {:>9}\n", t.topic, t.type, t.messages);
     }
     const auto summary = io::summarize(io::read_input(input->path, kind));
     if (*json) {

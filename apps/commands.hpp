@@ -6,6 +6,7 @@ namespace navaid::cli {
 
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
+void add_export_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_scenario_map_command(CLI::App& app);

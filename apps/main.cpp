@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   navaid::cli::add_info_command(app);
   navaid::cli::add_convert_command(app);
+  navaid::cli::add_export_command(app);
   navaid::cli::add_plot_command(app);
   navaid::cli::add_simulate_command(app);
   navaid::cli::add_scenario_map_command(app);

@@ -2,10 +2,18 @@
 // (tests/apps/fixtures/recording_to_bag.py), then navaid info / convert / run on the bag.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include "navaid/io/text_file.hpp"
 
 #include "test_support.hpp"
 
@@ -113,3 +121,109 @@ TEST_F(RosBagCli, BadBagOptionsAreClearErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// What python3-rosbag reads back from a bag (tests/apps/fixtures/bag_contents.py).
+nlohmann::json bag_contents(const fs::path& bag) {
+  const std::string command =
+      "/usr/bin/python3 '" + std::string(NAVAID_SOURCE_DIR) + "/tests/apps/fixtures/bag_contents.py' '" + bag.string() + "'";
+  std::string out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {};
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+  if (pclose(pipe) != 0) return {};
+  return nlohmann::json::parse(out);
+}
+
+std::size_t count_lines(const fs::path& file) {
+  const std::string text = read_text(file);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+std::vector<std::string> lines_of(const fs::path& file) {
+  std::vector<std::string> lines;
+  std::istringstream in(read_text(file));
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+}  // namespace
+
+// A full-device run (Smart Cane: map, plans, cues) exported for RViz and read back by python3-rosbag.
+TEST_F(RosBagCli, ExportWritesTheRunForRViz) {
+  const fs::path run = path("device-run");
+  const auto r = navaid_cli("run --recording " + q(path("walk")) + " --out " + q(run) + " --device smart-cane --no-plot");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path bag = path("device-run.bag");
+  const auto e = navaid_cli("export --run " + q(run) + " --bag " + q(bag));
+  ASSERT_EQ(e.status, 0) << e.output;
+  const auto c = bag_contents(bag);
+  ASSERT_TRUE(c.contains("topics")) << e.output;
+  const std::size_t estimates = count_lines(run / "estimates.csv") - 1;
+  EXPECT_EQ(c["topics"]["/tf"]["count"], estimates);
+  EXPECT_EQ(c["topics"]["/tf"]["type"], "tf2_msgs/TFMessage");
+  EXPECT_EQ(c["topics"]["/navaid/pose"]["count"], estimates);
+  EXPECT_EQ(c["topics"]["/navaid/pose"]["type"], "geometry_msgs/PoseWithCovarianceStamped");
+  EXPECT_EQ(c["topics"]["/tf_static"]["count"], 1);
+  EXPECT_EQ(c["topics"]["/navaid/path"]["type"], "nav_msgs/Path");
+  EXPECT_GE(c["topics"]["/navaid/path"]["count"].get<int>(), 6);  // 1 Hz over 6 s, and the end
+  EXPECT_EQ(c["last_path_poses"], estimates);
+  EXPECT_EQ(c["topics"]["/navaid/map"]["type"], "sensor_msgs/PointCloud2");
+  EXPECT_EQ(c["topics"]["/navaid/markers"]["type"], "visualization_msgs/MarkerArray");
+  for (const char* topic : {"/tf", "/navaid/pose", "/navaid/path", "/navaid/map", "/navaid/markers"})
+    EXPECT_EQ(c["topics"][topic]["frame_ids"], nlohmann::json::array({"world"})) << topic;
+  EXPECT_EQ(c["transforms"], nlohmann::json::parse(R"([["body", "camera"], ["world", "body"]])"));
+  // body -> camera is the recording's T_B_C.
+  const auto calibration = read_text(path("walk") / "calibration.yaml");
+  const auto q_bc = c["tf_static"][0];
+  EXPECT_NE(calibration.find(nlohmann::json(q_bc[0]).dump()), std::string::npos) << q_bc << calibration;
+  // The last pose's covariance: position block as estimated, rotation block turned from body axes
+  // (ours, on the right) to the world's fixed axes (ROS's): R Sigma R^T.
+  const auto last = navaid::io::split_fields(lines_of(run / "estimates.csv").back(), ',');
+  const auto num = [&](std::size_t i) { return std::stod(std::string(last[i])); };
+  const Eigen::Quaterniond q_wb(num(4), num(5), num(6), num(7));
+  Eigen::Matrix3d sigma_p, sigma_r;
+  sigma_p << num(18), num(19), num(20), num(19), num(21), num(22), num(20), num(22), num(23);  // cov_pxx ...
+  sigma_r << num(24), num(25), num(26), num(25), num(27), num(28), num(26), num(28), num(29);  // cov_rxx ...
+  const Eigen::Matrix3d expected_r = q_wb.toRotationMatrix() * sigma_r * q_wb.toRotationMatrix().transpose();
+  const auto cov = c["last_pose"]["covariance"];
+  for (int row = 0; row < 3; ++row)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(cov[6 * row + k].get<double>(), sigma_p(row, k), 1e-12 + 1e-9 * std::abs(sigma_p(row, k)));
+      EXPECT_NEAR(cov[6 * (row + 3) + k + 3].get<double>(), expected_r(row, k),
+                  1e-12 + 1e-9 * std::abs(expected_r(row, k)));
+      EXPECT_EQ(cov[6 * row + k + 3].get<double>(), 0.0);  // estimates.csv keeps no cross terms
+    }
+  EXPECT_GT(sigma_r(0, 0), 0.0);
+  EXPECT_FALSE(expected_r.isApprox(sigma_r, 1e-3));  // the turn matters: the test can fail
+  // The map cloud holds every vertex of map.ply, with its class colour and id.
+  const std::string ply = read_text(run / "map" / "map.ply");
+  const auto vertices = std::stoul(ply.substr(ply.find("element vertex ") + 15));
+  EXPECT_EQ(c["map"]["width"], vertices);
+  EXPECT_EQ(c["map"]["fields"], nlohmann::json::parse(R"(["x","y","z","rgb","class_id","probability","occupancy"])"));
+  for (const char* ns : {"obstacles", "plan", "cue", "cue_text"})
+    EXPECT_NE(std::find(c["marker_namespaces"].begin(), c["marker_namespaces"].end(), ns), c["marker_namespaces"].end())
+        << ns;
+
+  // The RViz configuration in docs/ shows every topic the export writes.
+  const std::string rviz = read_text(fs::path(NAVAID_SOURCE_DIR) / "docs" / "navaid.rviz");
+  for (const auto& entry : c["topics"].items()) {
+    const std::string& topic = entry.key();
+    if (topic == "/tf" || topic == "/tf_static") continue;  // TF needs no display topic
+    EXPECT_NE(rviz.find(topic), std::string::npos) << topic;
+  }
+  EXPECT_NE(rviz.find("Fixed Frame: world"), std::string::npos);
+
+  // Bad input: not a run folder, an unknown compression, a recording that is gone.
+  auto bad = navaid_cli("export --run " + q(path("walk")) + " --bag " + q(path("x.bag")));
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("estimates.csv"), std::string::npos) << bad.output;
+  bad = navaid_cli("export --run " + q(run) + " --bag " + q(path("x.bag")) + " --compression zstd");
+  EXPECT_NE(bad.status, 0);
+  bad = navaid_cli("export --run " + q(run) + " --bag " + q(path("x.bag")) + " --recording " + q(path("gone")));
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("gone"), std::string::npos) << bad.output;
+}
