@@ -18,7 +18,8 @@ Mat3 rot_z(double yaw) { return Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotation
 Similarity align_by_one_pose(const PosePair& pair, AlignmentMode mode) {
   Similarity S;
   if (mode == AlignmentMode::kNone) return S;
-  if (mode == AlignmentMode::kSim3) throw Error("sim3 alignment needs at least 2 frames (scale is undetermined by one)");
+  if (mode == AlignmentMode::kSim3 || mode == AlignmentMode::kScale)
+    throw Error(std::string(to_string(mode)) + " alignment needs at least 2 frames (scale is undetermined by one)");
   const Mat3 R = pair.gt.rotation() * pair.est.rotation().transpose();
   // For kPosYaw the yaw maximising trace(Rz^T R), i.e. the rotation about z closest to R.
   S.R = mode == AlignmentMode::kPosYaw ? rot_z(best_yaw(R.transpose())) : R;
@@ -34,6 +35,7 @@ std::string_view to_string(AlignmentMode mode) {
     case AlignmentMode::kPosYaw: return "4dof";
     case AlignmentMode::kSe3: return "se3";
     case AlignmentMode::kSim3: return "sim3";
+    case AlignmentMode::kScale: return "scale";
   }
   return "?";
 }
@@ -43,6 +45,7 @@ std::optional<AlignmentMode> alignment_mode_from_string(std::string_view name) {
   if (name == "4dof" || name == "posyaw") return AlignmentMode::kPosYaw;
   if (name == "se3") return AlignmentMode::kSe3;
   if (name == "sim3") return AlignmentMode::kSim3;
+  if (name == "scale") return AlignmentMode::kScale;
   return std::nullopt;
 }
 
@@ -87,17 +90,23 @@ Similarity align_positions(const std::vector<Vec3>& est, const std::vector<Vec3>
   } else {
     const Eigen::JacobiSVD<Mat3> svd(Sigma, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const Vec3 d = svd.singularValues();
-    if (!(d(1) > kRankTolerance * d(0)))
+    // Scale alone is fixed by the singular values, whatever the rotation: collinear points will do.
+    if (mode != AlignmentMode::kScale && !(d(1) > kRankTolerance * d(0)))
       throw Error(std::string(to_string(mode)) + " alignment: the positions are collinear (or identical), so the "
                   "rotation is undetermined; use more or other frames");
     // Reflection guard (Umeyama eq. 39-43): flip the smallest axis when U V^T is improper.
     Vec3 s(1.0, 1.0, 1.0);
     if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0) s(2) = -1.0;
     S.R = svd.matrixU() * s.asDiagonal() * svd.matrixV().transpose();
-    if (mode == AlignmentMode::kSim3) {
-      if (!(var_e > 0.0)) throw Error("sim3 alignment: all estimated positions are equal, so scale is undetermined");
+    if (mode == AlignmentMode::kSim3 || mode == AlignmentMode::kScale) {
+      if (!(var_e > 0.0))
+        throw Error(std::string(to_string(mode)) + " alignment: all estimated positions are equal, so scale is undetermined");
       S.scale = d.dot(s) / var_e;
     }
+  }
+  if (mode == AlignmentMode::kScale) {  // the similarity's scale only: positions are scaled about W's origin
+    S.R = Mat3::Identity();
+    return S;
   }
   S.t = mu_g - S.scale * S.R * mu_e;
   return S;

@@ -104,3 +104,63 @@ TEST(EvalCli, BadInputFailsWithAClearMessage) {
   EXPECT_NE(navaid_cli("eval --est " + quote(dir / "missing.tum") + gt_arg).status, 0);
   EXPECT_NE(navaid_cli("eval" + gt_arg).status, 0);
 }
+
+// evo's flags (docs/evaluation.md, "evo"): -a, bare --align, -s, -as, --n_to_align, --t_max_diff,
+// --delta / --delta_unit / --all_pairs; checked on a trajectory whose answers are known by hand:
+// the estimate is the ground truth stretched by 1.1 and turned 30 degrees about z.
+TEST(EvalCli, EvoFlags) {
+  ScratchDir dir("eval-cli-evo");
+  std::vector<navaid::io::StampedPose> gt, est;
+  const navaid::Quat turn(Eigen::AngleAxisd(M_PI / 6, navaid::Vec3::UnitZ()));
+  for (int i = 0; i < 20; ++i) {
+    const navaid::Vec3 p(0.5 * i, 0.3 * std::sin(0.7 * i), 0.1 * (i % 3));
+    gt.push_back({i * 100'000'000LL, navaid::SE3(navaid::Quat::Identity(), p)});
+    est.push_back({i * 100'000'000LL + 3'000'000, navaid::SE3(turn, turn * (1.1 * p))});
+  }
+  navaid::io::write_tum_trajectory(dir / "gt.tum", gt);
+  navaid::io::write_tum_trajectory(dir / "est.tum", est);
+  const auto eval = [&](const std::string& flags, const std::string& name) {
+    const CliRun run = navaid_cli("eval --est " + quote(dir / "est.tum") + " --gt " + quote(dir / "gt.tum") + " " +
+                                  flags + " --no-plot --out " + quote(dir / name));
+    EXPECT_EQ(run.status, 0) << flags << "\n" << run.output;
+    return nlohmann::json::parse(navaid::testing::read_text(dir / name / "eval.json"));
+  };
+  auto j = eval("-a --t_max_diff 0.01", "a");
+  EXPECT_EQ(j["alignment"]["mode"], "se3");
+  EXPECT_EQ(j["association"]["rule"], "evo");
+  EXPECT_EQ(j["association"]["matched"], 20);  // 3 ms apart, within 10 ms
+  EXPECT_EQ(eval("--align --t_max_diff 0.01", "bare")["alignment"]["mode"], "se3");
+  j = eval("-as --delta 1 --delta_unit f", "as");
+  EXPECT_EQ(j["alignment"]["mode"], "sim3");
+  EXPECT_NEAR(j["alignment"]["scale"].get<double>(), 1.0 / 1.1, 1e-9);
+  EXPECT_NEAR(j["ate"]["position_m"]["max"].get<double>(), 0.0, 1e-6);
+  EXPECT_EQ(j["rpe_evo"]["pairs"], 19);
+  EXPECT_NEAR(j["rpe_evo"]["translation_m"]["max"].get<double>(), 0.0, 1e-9);
+  // -s alone: the scale only; relative errors vanish, absolute ones do not (no rotation applied).
+  j = eval("-s --delta 2 --delta_unit m --all_pairs", "s");
+  EXPECT_EQ(j["alignment"]["mode"], "scale");
+  EXPECT_NEAR(j["rpe_evo"]["translation_m"]["max"].get<double>(), 0.0, 1e-9);
+  EXPECT_GT(j["ate"]["position_m"]["rmse"].get<double>(), 0.5);
+  EXPECT_TRUE(j["rpe_evo"]["all_pairs"].get<bool>());
+  // No alignment: each frame pair sees the 10 % stretch, 0.1 of its step (the turn cancels).
+  j = eval("--align none --delta 1", "none");
+  double largest = 0.0;
+  for (std::size_t i = 1; i < gt.size(); ++i) largest = std::max(largest, 0.1 * (gt[i].T_W_B.t - gt[i - 1].T_W_B.t).norm());
+  EXPECT_NEAR(j["rpe_evo"]["translation_m"]["max"].get<double>(), largest, 1e-9);
+  EXPECT_EQ(j["association"]["rule"], "rpg");
+  EXPECT_EQ(eval("-a --n_to_align 5", "n")["alignment"]["frames"], 5);
+
+  const auto fails = [&](const std::string& flags, const std::string& says) {
+    const CliRun run = navaid_cli("eval --est " + quote(dir / "est.tum") + " --gt " + quote(dir / "gt.tum") + " " + flags);
+    EXPECT_NE(run.status, 0) << flags;
+    EXPECT_NE(run.output.find(says), std::string::npos) << flags << "\n" << run.output;
+  };
+  fails("--align 4dof -s", "--correct_scale");
+  fails("-a --align sim3", "-a is --align se3");
+  fails("--all_pairs", "go with --delta");
+  fails("--delta 1 --delta_unit x", "--delta_unit");
+  fails("--t_max_diff -1", "--t_max_diff");
+  fails("--t_max_diff 0.002", "no estimated pose is within");  // the estimate lags 3 ms
+  fails("--delta 1.5 --delta_unit f", "whole number");
+  fails("--delta 100 --delta_unit m", "gives no pair");
+}

@@ -6,6 +6,7 @@
 //   kSim3   s free (monocular scale),
 //   kPosYaw s = 1 and R a rotation about z (4-DOF: both world frames are gravity-aligned, so only
 //           yaw and translation are unobservable for a visual-inertial estimator),
+//   kScale  the scale of kSim3 alone, R = I and t = 0 (evo's --correct_scale without --align),
 //   kNone   identity.
 // With one pose (align_frames == 1) position alone cannot fix a rotation; the rotation is then taken
 // from that pose's orientation (R = R_gt R_est^T, for kPosYaw only its yaw) and t from its position,
@@ -19,9 +20,9 @@
 
 namespace navaid::experiments {
 
-enum class AlignmentMode { kNone, kPosYaw, kSe3, kSim3 };
+enum class AlignmentMode { kNone, kPosYaw, kSe3, kSim3, kScale };
 
-/// "none", "4dof", "se3", "sim3".
+/// "none", "4dof", "se3", "sim3", "scale".
 std::string_view to_string(AlignmentMode mode);
 /// Accepts to_string's names plus "posyaw" (rpg's name for 4dof); nullopt otherwise.
 std::optional<AlignmentMode> alignment_mode_from_string(std::string_view name);

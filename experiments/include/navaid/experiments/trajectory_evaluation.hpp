@@ -5,7 +5,11 @@
 // (relative_pose_error.hpp).
 #include <vector>
 
+#include <optional>
+#include <string>
+
 #include "navaid/experiments/absolute_trajectory_error.hpp"
+#include "navaid/experiments/evo_conventions.hpp"
 #include "navaid/experiments/relative_pose_error.hpp"
 #include "navaid/experiments/time_association.hpp"
 #include "navaid/io/tum_trajectory.hpp"
@@ -17,6 +21,8 @@ struct EvaluationOptions {
   Duration tolerance = kDefaultAssociationTolerance;
   std::vector<double> rpe_lengths_m;                                       ///< fixed lengths
   std::vector<double> rpe_length_percent = {10.0, 20.0, 30.0, 40.0, 50.0};  ///< rpg's defaults
+  std::optional<Duration> evo_max_diff;  ///< set: evo's association with this max_diff, not rpg's
+  std::optional<EvoRpeOptions> evo_rpe;  ///< set: evo's RPE too, on the ATE's aligned estimate
 };
 
 struct TrajectoryEvaluation {
@@ -26,6 +32,8 @@ struct TrajectoryEvaluation {
   double gt_path_length_m = 0.0;  ///< of the matched ground truth
   AteResult ate;
   std::vector<RpeResult> rpe;  ///< fixed lengths first, then the percentages (duplicates removed)
+  std::string association = "rpg";    ///< "rpg" (greedy, each pose once) or "evo"
+  std::optional<EvoRpeResult> evo_rpe;
 };
 
 /// Throws navaid::Error when either trajectory is empty or no pose matches within the tolerance
