@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/ablation.hpp"
+#include "navaid/experiments/ablation_snakemake.hpp"
 #include "navaid/experiments/run_process.hpp"
 
 namespace navaid::cli {
@@ -27,16 +28,13 @@ struct AblateArgs {
   std::filesystem::path matrix, out;
   int jobs = 1;
   bool plot = true;
+  EngineOptions engine;
 };
 
 void run(const AblateArgs& a) {
   const experiments::AblationMatrix m = experiments::read_ablation_matrix(a.matrix);
   std::filesystem::create_directories(a.out);
-  std::vector<experiments::CellOutcome> outcomes;
-  {
-    const auto hooks = child_process_hooks(m, a.out);  // the progress bar ends with the hooks
-    outcomes = experiments::run_ablation(m, a.out, a.jobs, hooks);
-  }
+  const std::vector<experiments::CellOutcome> outcomes = run_study(m, a.out, a.jobs, a.engine);
   experiments::write_ablation_csv(m, outcomes, a.out / "results.csv");
   std::string md;
   for (const auto& metric : m.metrics) md += experiments::ablation_markdown(m, outcomes, metric) + "\n";
@@ -70,9 +68,20 @@ void add_ablate_command(CLI::App& app) {
   auto a = std::make_shared<AblateArgs>();
   cmd->add_option("matrix", a->matrix, "Ablation matrix (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", a->out, "Study folder (re-running resumes: finished cells are kept)")->required();
-  cmd->add_option("--jobs", a->jobs, "Cells run in parallel (default 1)")->check(CLI::Range(1, 64));
+  cmd->add_option("--jobs", a->jobs, "Cells run in parallel, or jobs queued at once on a cluster (default 1)")
+      ->check(CLI::Range(1, 10000));
   cmd->add_flag("!--no-plot", a->plot, "Skip the figure");
+  a->engine.add_to(*cmd);
   cmd->callback([a] { run(*a); });
+
+  // What the Snakemake workflow's rules run: one recording or cell of a plan (hidden from --help).
+  auto* job = app.add_subcommand("ablate-job", "Run one job of a Snakemake study plan");
+  job->group("");
+  auto plan = std::make_shared<std::filesystem::path>();
+  auto id = std::make_shared<std::string>();
+  job->add_option("plan", *plan, "plan.json of navaid ablate --engine snakemake")->required()->check(CLI::ExistingFile);
+  job->add_option("job", *id, "The job's id")->required();
+  job->callback([plan, id] { experiments::run_ablation_job(*plan, *id); });
 }
 
 }  // namespace navaid::cli

@@ -29,6 +29,7 @@ struct ReproduceArgs {
   std::size_t seeds = 0;
   bool quick = false;
   bool plot = true;
+  EngineOptions engine;
 };
 
 // The matrices live beside the plotting scripts: experiments/reproductions in the source tree
@@ -60,6 +61,12 @@ void run(const ReproduceArgs& a) {
   env.hooks = [](const experiments::AblationMatrix& m, const std::filesystem::path& out) {
     return child_process_hooks(m, out, "cells");
   };
+  if (a.engine.engine != "local")
+    env.run_cells = [engine = a.engine](const experiments::AblationMatrix& m, const std::filesystem::path& out, int jobs) {
+      return run_study(m, out, jobs, engine, "cells");
+    };
+  else if (!a.engine.profile.empty() || !a.engine.snakemake_arguments.empty())
+    throw UsageError("--profile and --snakemake-arg need --engine snakemake");
   env.plot = [](const std::string& script, const std::vector<std::string>& args) {
     try {
       run_figure_script(script, args);
@@ -79,11 +86,13 @@ void add_reproduce_command(CLI::App& app) {
   cmd->add_flag("--list", a->list, "List the reproducible tables and figures");
   cmd->add_option("name", a->name, "Which one (see --list)");
   cmd->add_option("--out", a->out, "Output folder (re-running resumes: finished runs are kept)");
-  cmd->add_option("--jobs", a->jobs, "Runs in parallel (default 1)")->check(CLI::Range(1, 64));
+  cmd->add_option("--jobs", a->jobs, "Runs in parallel, or jobs queued at once on a cluster (default 1)")
+      ->check(CLI::Range(1, 10000));
   cmd->add_option("--seeds", a->seeds, "Number of seeds (default: the matrix's)")->check(CLI::Range(1, 1000));
   cmd->add_flag("--quick", a->quick, "The small version (a subset, shorter walks, 2 seeds)");
   cmd->add_option("--matrix", a->matrix, "Run this matrix file instead of the registered one")->check(CLI::ExistingFile);
   cmd->add_flag("!--no-plot", a->plot, "Skip the figures");
+  a->engine.add_to(*cmd);
   cmd->callback([a] { run(*a); });
 }
 

@@ -25,6 +25,7 @@ PACKAGES=(
   libvisualization-msgs-dev
   python3-rosbag python3-roslz4 python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-std-msgs
   python3-tf2-msgs python3-visualization-msgs
+  snakemake munge slurmctld slurmd slurm-client
   chromium
   libgtest-dev libgmock-dev libbenchmark-dev
   clang clang-14 libfuzzer-14-dev llvm-14

@@ -242,6 +242,89 @@ fs::path recording_folder(const AblationMatrix& m, const AblationCell& c, const 
   return rec.simulated() ? out / "recordings" / rec.name / seed_dir(c.seed) : *rec.path;
 }
 
+std::string simulate_into(const fs::path& folder, const std::function<void()>& simulate) {
+  try {
+    fs::remove_all(folder);  // an interrupted simulation restarts from scratch
+    fs::create_directories(folder.parent_path());
+    simulate();
+    if (!fs::exists(folder / "recording.yaml")) throw Error("the simulation wrote no recording.yaml");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string simulate_ablation_recording(const AblationMatrix& m, const AblationCell& c, const fs::path& out,
+                                        const AblationHooks& hooks) {
+  const fs::path folder = recording_folder(m, c, out);
+  return simulate_into(folder, [&] { hooks.simulate(m.recordings[c.recording], c.seed, folder); });
+}
+
+CellOutcome run_cell_in_folder(const fs::path& folder, const fs::path& log, const std::function<int()>& run,
+                               const std::string& recording_error, const std::vector<std::string>& metrics) {
+  CellOutcome o;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    if (fs::exists(folder / "summary.json") && !fs::exists(folder / "failure.txt")) {
+      o.status = CellStatus::kResumed;
+    } else if (!recording_error.empty()) {
+      throw Error("recording not available: " + recording_error);
+    } else {
+      fs::remove_all(folder);
+      fs::create_directories(folder);
+      const int status = run();
+      if (status != 0) throw Error(fmt::format("the run exited with status {} (see {})", status, log.string()));
+      if (!fs::exists(folder / "summary.json")) throw Error("the run wrote no summary.json");
+      o.status = CellStatus::kDone;
+    }
+    o.metrics = read_metrics(folder / "summary.json", metrics);
+  } catch (const std::exception& e) {
+    o.status = CellStatus::kFailed;
+    o.error = e.what();
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    std::ofstream(folder / "failure.txt") << o.error << "\n";
+  }
+  if (o.status != CellStatus::kResumed)
+    o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return o;
+}
+
+CellOutcome run_ablation_cell(const AblationMatrix& m, const AblationCell& c, const fs::path& out,
+                              const AblationHooks& hooks, const std::string& recording_error) {
+  const fs::path folder = cell_folder(m, c, out);
+  CellOutcome o = run_cell_in_folder(
+      folder, cell_log(m, c, out), [&] { return hooks.run_cell(c, recording_folder(m, c, out), folder); },
+      recording_error, m.metrics);
+  o.cell = c;
+  return o;
+}
+
+CellOutcome read_ablation_cell(const AblationMatrix& m, const AblationCell& c, const fs::path& out) {
+  CellOutcome o;
+  o.cell = c;
+  const fs::path folder = cell_folder(m, c, out);
+  try {
+    std::ifstream seconds(folder / kCellSecondsFile);
+    const bool timed = static_cast<bool>(seconds >> o.seconds);  // run by a job of this study run
+    if (fs::exists(folder / "failure.txt")) {
+      std::ifstream in(folder / "failure.txt");
+      std::getline(in, o.error);
+      return o;
+    }
+    if (!fs::exists(folder / "summary.json")) {
+      o.error = "the cell has not run";
+      return o;
+    }
+    o.metrics = read_metrics(folder / "summary.json", m.metrics);
+    o.status = timed ? CellStatus::kDone : CellStatus::kResumed;
+  } catch (const std::exception& e) {
+    o.status = CellStatus::kFailed;
+    o.error = e.what();
+  }
+  return o;
+}
+
 std::vector<CellOutcome> run_ablation(const AblationMatrix& m, const fs::path& out, int jobs, const AblationHooks& hooks) {
   const std::vector<AblationCell> cells = ablation_cells(m);
 
@@ -255,16 +338,9 @@ std::vector<CellOutcome> run_ablation(const AblationMatrix& m, const fs::path& o
   std::mutex mutex;
   parallel_for(to_simulate.size(), jobs, [&](std::size_t i) {
     const AblationCell& c = to_simulate[i];
-    const fs::path folder = recording_folder(m, c, out);
-    try {
-      fs::remove_all(folder);  // an interrupted simulation restarts from scratch
-      fs::create_directories(folder.parent_path());
-      hooks.simulate(m.recordings[c.recording], c.seed, folder);
-      if (!fs::exists(folder / "recording.yaml")) throw Error("the simulation wrote no recording.yaml");
-    } catch (const std::exception& e) {
-      std::lock_guard<std::mutex> lock(mutex);
-      recording_errors[{c.recording, c.seed}] = e.what();
-    }
+    const std::string error = simulate_ablation_recording(m, c, out, hooks);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!error.empty()) recording_errors[{c.recording, c.seed}] = error;
   });
 
   // Phase 2: the cells.
@@ -272,33 +348,8 @@ std::vector<CellOutcome> run_ablation(const AblationMatrix& m, const fs::path& o
   std::atomic<std::size_t> done{0};
   parallel_for(cells.size(), jobs, [&](std::size_t i) {
     const AblationCell& c = cells[i];
-    CellOutcome& o = outcomes[i];
-    o.cell = c;
-    const fs::path folder = cell_folder(m, c, out);
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      if (fs::exists(folder / "summary.json") && !fs::exists(folder / "failure.txt")) {
-        o.status = CellStatus::kResumed;
-      } else if (auto e = recording_errors.find({c.recording, c.seed}); e != recording_errors.end()) {
-        throw Error("recording not available: " + e->second);
-      } else {
-        fs::remove_all(folder);
-        fs::create_directories(folder);
-        const int status = hooks.run_cell(c, recording_folder(m, c, out), folder);
-        if (status != 0) throw Error(fmt::format("the run exited with status {} (see {})", status, cell_log(m, c, out).string()));
-        if (!fs::exists(folder / "summary.json")) throw Error("the run wrote no summary.json");
-        o.status = CellStatus::kDone;
-      }
-      o.metrics = read_metrics(folder / "summary.json", m.metrics);
-    } catch (const std::exception& e) {
-      o.status = CellStatus::kFailed;
-      o.error = e.what();
-      std::error_code ec;
-      fs::create_directories(folder, ec);
-      std::ofstream(folder / "failure.txt") << o.error << "\n";
-    }
-    if (o.status != CellStatus::kResumed)
-      o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto e = recording_errors.find({c.recording, c.seed});
+    outcomes[i] = run_ablation_cell(m, c, out, hooks, e == recording_errors.end() ? "" : e->second);
     const std::size_t n = ++done;
     std::lock_guard<std::mutex> lock(mutex);
     if (hooks.on_cell) hooks.on_cell(n, cells.size());

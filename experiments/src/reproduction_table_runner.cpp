@@ -86,7 +86,9 @@ void run_table_reproduction(const TableReproductionSpec& spec, const fs::path& m
                       cells.size(), kept, request.jobs, request.out.string()));
 
   std::vector<CellOutcome> outcomes;
-  {
+  if (env.run_cells) {
+    outcomes = env.run_cells(m, request.out, request.jobs);
+  } else {
     const AblationHooks hooks = env.hooks(m, request.out);  // its progress ends with it
     outcomes = run_ablation(m, request.out, request.jobs, hooks);
   }

@@ -47,4 +47,9 @@ std::string figures_dir() {
   return NAVAID_INSTALLED_FIGURES_DIR;
 }
 
+std::string workflow_dir() {
+  if (const char* env = std::getenv("NAVAID_WORKFLOW_DIR")) return env;
+  return (std::filesystem::path(figures_dir()).parent_path() / "workflow").string();
+}
+
 }  // namespace navaid::experiments

@@ -90,6 +90,27 @@ std::filesystem::path recording_folder(const AblationMatrix& m, const AblationCe
 std::vector<CellOutcome> run_ablation(const AblationMatrix& matrix, const std::filesystem::path& out, int jobs,
                                       const AblationHooks& hooks);
 
+/// The steps of run_ablation, for engines that run them as separate jobs (ablation_snakemake.hpp):
+/// simulating one (recording, seed) returns "" or the error; running one cell writes failure.txt
+/// on failure (and resumes a cell with summary.json, as run_ablation does).
+std::string simulate_ablation_recording(const AblationMatrix& matrix, const AblationCell& cell,
+                                        const std::filesystem::path& out, const AblationHooks& hooks);
+CellOutcome run_ablation_cell(const AblationMatrix& matrix, const AblationCell& cell, const std::filesystem::path& out,
+                              const AblationHooks& hooks, const std::string& recording_error);
+/// The same two steps on explicit folders (a job knows its folders, not the matrix): `simulate`
+/// must write `folder`; `run` returns the cell's exit status. The outcome's cell is left unset.
+std::string simulate_into(const std::filesystem::path& folder, const std::function<void()>& simulate);
+CellOutcome run_cell_in_folder(const std::filesystem::path& folder, const std::filesystem::path& log,
+                               const std::function<int()>& run, const std::string& recording_error,
+                               const std::vector<std::string>& metrics);
+
+/// A cell job records its wall time here (seconds), beside summary.json or failure.txt.
+constexpr const char* kCellSecondsFile = "cell_seconds.txt";
+/// A cell's outcome from what is on disk: failure.txt -> failed (its first line the error);
+/// summary.json -> done with the recorded seconds, or resumed without them; nothing -> failed.
+/// The seconds are those kCellSecondsFile records (0 without it).
+CellOutcome read_ablation_cell(const AblationMatrix& matrix, const AblationCell& cell, const std::filesystem::path& out);
+
 /// One row per cell: recording, variant, seed, status, seconds, then one column per metric.
 void write_ablation_csv(const AblationMatrix& matrix, const std::vector<CellOutcome>& outcomes,
                         const std::filesystem::path& file);

@@ -31,6 +31,10 @@ struct ReproductionRequest {
 struct ReproductionEnvironment {
   /// Hooks that simulate recordings and run cells of `matrix` into `out` (progress included).
   std::function<AblationHooks(const AblationMatrix& matrix, const std::filesystem::path& out)> hooks;
+  /// When set, runs the cells instead of run_ablation with `hooks` (navaid reproduce --engine
+  /// snakemake); the outcomes must be what run_ablation would give.
+  std::function<std::vector<CellOutcome>(const AblationMatrix& matrix, const std::filesystem::path& out, int jobs)>
+      run_cells;
   /// Runs a script of experiments/figures with arguments; throws when it fails.
   std::function<void(const std::string& script, const std::vector<std::string>& args)> plot;
   /// One line of progress for the terminal.

@@ -16,4 +16,8 @@ std::string self_executable();
 /// experiments/figures, else the installed share/navaid/figures.
 std::string figures_dir();
 
+/// The folder holding the Snakemake workflow (Snakefile, the Slurm profile):
+/// $NAVAID_WORKFLOW_DIR, else experiments/workflow beside the figures folder.
+std::string workflow_dir();
+
 }  // namespace navaid::experiments
