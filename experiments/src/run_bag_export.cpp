@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 
+#include "navaid/core/csv_field.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/core/semantic_classes.hpp"
 #include "navaid/experiments/run_folder.hpp"
@@ -91,30 +92,11 @@ double yaw_of(const SE3& T) {
   return std::atan2(x.y(), x.x());
 }
 
-// Splits a CSV line that may hold double-quoted fields (csv_field's quoting).
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        out.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        out.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.emplace_back();
-    } else {
-      out.back() += c;
-    }
-  }
-  return out;
+// The fields of a CSV line that navaid wrote (quoted free text allowed); IoError at an open quote.
+std::vector<std::string> csv_fields(const io::TextFile& file, const std::string& line) {
+  auto fields = split_csv_fields(line);
+  if (!fields) file.fail("a quoted field is not closed");
+  return *fields;
 }
 
 // Column index by name in a CSV header; IoError naming the file when absent.
@@ -330,12 +312,12 @@ void write_plans(BagOut& bag, const fs::path& file, const std::vector<StateEstim
   io::TextFile in(file);
   std::string line;
   if (!in.next(line)) return;
-  const auto header = csv_fields(line);
+  const auto header = csv_fields(in, line);
   const std::size_t c_t = column(in, header, "t_ns"), c_status = column(in, header, "status"),
                     c_path = column(in, header, "path");
   while (in.next(line)) {
     if (io::is_blank_or_comment(line)) continue;
-    const auto f = csv_fields(line);
+    const auto f = csv_fields(in, line);
     if (f.size() != header.size()) in.fail("expected " + std::to_string(header.size()) + " fields");
     const Timestamp t = io::parse_nanoseconds_field(in, f[c_t], "t_ns");
     const ros::Time stamp = ros_time(t, file.string());
@@ -370,12 +352,12 @@ void write_cues(BagOut& bag, const fs::path& file, const std::vector<StateEstima
   io::TextFile in(file);
   std::string line;
   if (!in.next(line)) return;
-  const auto header = csv_fields(line);
+  const auto header = csv_fields(in, line);
   const std::size_t c_t = column(in, header, "t_s"), c_kind = column(in, header, "kind"),
                     c_dir = column(in, header, "direction_deg"), c_text = column(in, header, "text");
   while (in.next(line)) {
     if (io::is_blank_or_comment(line)) continue;
-    const auto f = csv_fields(line);
+    const auto f = csv_fields(in, line);
     if (f.size() != header.size()) in.fail("expected " + std::to_string(header.size()) + " fields");
     if (f[c_dir].empty()) continue;
     const Timestamp t = io::parse_seconds_field(in, f[c_t], "t_s");

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <optional>
 
+#include "navaid/core/csv_field.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
 
@@ -32,32 +33,6 @@ std::optional<E> by_name(std::string_view name, int count) {
   return std::nullopt;
 }
 
-/// Splits one CSV line; fields may be double-quoted ("" inside is a quote).
-std::optional<std::vector<std::string>> split_csv(std::string_view line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        fields.back() += c;
-      }
-    } else if (c == '"' && fields.back().empty()) {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  if (quoted) return std::nullopt;
-  return fields;
-}
 
 std::string quote(const std::string& s) {
   if (s.find_first_of(",\"") == std::string::npos) return s;
@@ -84,7 +59,7 @@ std::vector<GuidanceTimelineEntry> parse_guidance_timeline_csv(std::istream& in,
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-    const std::optional<std::vector<std::string>> f = split_csv(line);
+    const std::optional<std::vector<std::string>> f = split_csv_fields(line);
     if (!f) throw IoError(name, line_no, "unterminated quoted field");
     if (!header) {
       if (f->size() != kColumns.size() || !std::equal(kColumns.begin(), kColumns.end(), f->begin())) {

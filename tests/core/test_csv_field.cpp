@@ -1,6 +1,9 @@
 // csv_field: free text as one CSV field.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "navaid/core/csv_field.hpp"
 
 namespace {
@@ -14,3 +17,21 @@ TEST(CsvField, CommasQuotesAndLineBreaksAreQuoted) {
 }
 
 }  // namespace
+
+namespace navaid {
+namespace {
+
+TEST(SplitCsvFields, TakesBackWhatCsvFieldWrote) {
+  const std::vector<std::string> texts{"plain", "with, comma", "a \"quote\"", "", "both, \"of\" them"};
+  std::string line;
+  for (std::size_t i = 0; i < texts.size(); ++i) line += (i > 0 ? "," : "") + csv_field(texts[i]);
+  const auto fields = split_csv_fields(line);
+  ASSERT_TRUE(fields);
+  EXPECT_EQ(*fields, texts);
+  EXPECT_EQ(*split_csv_fields("a,,b"), (std::vector<std::string>{"a", "", "b"}));
+  EXPECT_EQ(*split_csv_fields(""), (std::vector<std::string>{""}));
+  EXPECT_FALSE(split_csv_fields("a,\"open"));
+}
+
+}  // namespace
+}  // namespace navaid
