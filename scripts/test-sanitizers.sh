@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 CI_SUBSET=0
 if [ "${1:-}" = "--ci" ]; then CI_SUBSET=1; shift; fi
 BUILD=${NAVAID_SANITIZE_BUILD:-build-sanitize}
-IO_FUZZERS=(fuzz_nmea_capture fuzz_navaid_recording fuzz_euroc fuzz_tum_rgbd fuzz_tum_trajectory fuzz_kalibr
+IO_FUZZERS=(fuzz_nmea_capture fuzz_navaid_recording fuzz_euroc fuzz_tum_rgbd fuzz_tum_trajectory fuzz_kalibr fuzz_ros_bag
   fuzz_occupancy_map)
 start=$(date +%s)
 bash scripts/install-deps.sh

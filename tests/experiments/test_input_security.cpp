@@ -58,28 +58,36 @@ TEST(InputSecurity, AHostileOutputFolderIsJustAFolderName) {
 
 TEST(InputSecurity, NoSourceStartsAShell) {
   // Every child program starts in run_process() (posix_spawn, argv). A std::system, popen or
-  // /bin/sh anywhere else in navaid's own code would take strings through a shell.
+  // /bin/sh anywhere else in navaid's own code would take strings through a shell. Python (the
+  // figures, the Snakemake workflow and its Slurm status script) may start programs only as
+  // subprocess.run([argv list]), never through a shell.
   const fs::path root = NAVAID_SOURCE_DIR;
   // (A bare `system(` is a member of the cue generator, so libc's is caught as std:: or ::.)
-  const std::regex shell(
-      R"((std::system|(^|[^:\w])::system|\bpopen|\bexec[lv]p?e?|\bposix_spawnp?)\s*\(|/bin/sh|\bsubprocess\b|os\.system)");
+  const std::regex native(R"((std::system|(^|[^:\w])::system|\bpopen|\bexec[lv]p?e?|\bposix_spawnp?)\s*\(|/bin/sh)");
+  const std::regex python(
+      R"(os\.system|os\.popen|\bshell\s*=\s*True|/bin/sh|subprocess\.(call|check_call|check_output|Popen|getoutput|getstatusoutput)\b|subprocess\.run\s*\(\s*[^\[\s])");
   int files = 0;
   for (const char* room : {"apps", "core", "io", "simulation", "estimation", "mapping", "planning", "interaction",
                            "experiments"}) {
     for (const auto& e : fs::recursive_directory_iterator(root / room)) {
       const std::string ext = e.path().extension().string();
-      if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".c" && ext != ".h" && ext != ".py"))
+      const bool is_python = ext == ".py" || e.path().filename() == "Snakefile";
+      if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".c" && ext != ".h" && !is_python))
         continue;
       ++files;
       if (e.path().filename() == "run_process.cpp") continue;
       std::ifstream in(e.path());
       std::string line;
       for (int n = 1; std::getline(in, line); ++n) {
-        EXPECT_FALSE(std::regex_search(line, shell)) << e.path().string() << ":" << n << ": " << line;
+        EXPECT_FALSE(std::regex_search(line, is_python ? python : native)) << e.path().string() << ":" << n << ": " << line;
       }
     }
   }
   EXPECT_GT(files, 300);
+  // The rule itself can fail.
+  EXPECT_TRUE(std::regex_search(std::string("subprocess.run('ls ' + x, shell=True)"), python));
+  EXPECT_TRUE(std::regex_search(std::string("subprocess.check_output(['ls'])"), python));
+  EXPECT_FALSE(std::regex_search(std::string("subprocess.run([NAVAID, 'ablate-job', plan], check=True)"), python));
 }
 
 }  // namespace

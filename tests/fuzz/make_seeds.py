@@ -201,6 +201,24 @@ def device_link(c):
           frame(0x01, 2, bytes([4, 1]) + struct.pack('<BhHHH', 0, -1234, 0, 0, 500)))
 
 
+def ros_bags(c, data, src):
+    """The real lz4 /tf bag, and the test fixtures' bags (uncompressed ones mutate best), written
+    by Debian's python3-rosbag through tests/io/fixtures/make_ros_bags.py."""
+    tf = data / 'ros-bags' / 'tf_example.bag'
+    if tf.exists():
+        c.add('fuzz_ros_bag', 'tf_example', tf.read_bytes())
+    import subprocess
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        made = subprocess.run(['/usr/bin/python3', str(src / 'tests/io/fixtures/make_ros_bags.py'), tmp],
+                              capture_output=True)
+        if made.returncode != 0:
+            print('make_seeds: no fixture bags (python3-rosbag missing?)')
+            return
+        for name in ('two_imus', 'odometry', 'split_imu', 'encodings'):
+            c.add('fuzz_ros_bag', name, (pathlib.Path(tmp) / (name + '.bag')).read_bytes())
+
+
 def recordings(c, recordings):
     for rec in recordings:
         rec = pathlib.Path(rec)
@@ -234,6 +252,7 @@ if __name__ == '__main__':
     tum_rgbd(corpus, data_root)
     kalibr(corpus, src, data_root)
     occupancy_map(corpus, data_root)
+    ros_bags(corpus, data_root, src)
     osm(corpus, data_root, src)
     wav(corpus)
     tables(corpus, src)
