@@ -27,6 +27,7 @@
 #include "navaid/simulation/person_motion.hpp"
 #include "navaid/simulation/simulation_config.hpp"
 #include "navaid/simulation/simulator.hpp"
+#include "navaid/core/random_draws.hpp"
 
 namespace navaid::experiments {
 
@@ -249,7 +250,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   if (turn_point_sigma > 0) {
     std::mt19937_64 way_rng(person_seed + 2);
     std::normal_distribution<double> n(0.0, turn_point_sigma);
-    for (simulation::Vec2& w : way) w += simulation::Vec2(n(way_rng), n(way_rng));
+    for (simulation::Vec2& w : way) w += draw_vector<2>([&] { return n(way_rng); });
   }
   simulation::SimulatedUser user(user_model, goal_known, way, turn_reach_m, person_seed + 1);
   if (needs_facing && goal_known) user.stop_at_goal();

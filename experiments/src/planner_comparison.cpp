@@ -7,6 +7,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 
 namespace navaid::experiments {
 
@@ -18,7 +19,7 @@ std::vector<PlannerPair> sample_planner_pairs(const mapping::CostMap& cost, cons
   std::mt19937_64 rng(sampling.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto draw_free = [&]() -> std::optional<mapping::Vec2> {
-    const mapping::Vec2 p = lo + mapping::Vec2(unit(rng) * size.x(), unit(rng) * size.y());
+    const mapping::Vec2 p = lo + draw_vector<2>([&] { return unit(rng); }).cwiseProduct(size);
     const std::optional<double> d = esdf.distance(p);
     if (!d || *d < sampling.clearance_m) return std::nullopt;
     return p;

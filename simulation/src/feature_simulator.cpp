@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 
 namespace navaid::simulation {
 
@@ -48,7 +49,8 @@ void seed_landmarks_from(const RayCaster& world, const Vec3& origin, const Featu
                          std::mt19937_64& rng, std::normal_distribution<double>& normal, std::vector<Landmark>& landmarks) {
   for (int r = 0; r < config.rays_per_seed_point; ++r) {
     // Isotropic directions, flattened towards the horizon where cameras look.
-    Vec3 dir(normal(rng), normal(rng), 0.6 * normal(rng));
+    Vec3 dir = draw_vector<3>([&] { return normal(rng); });
+    dir.z() *= 0.6;
     if (dir.norm() < 1e-9) continue;
     dir.normalize();
     const auto hit = world.cast(origin, dir, config.max_landmark_distance_m);
@@ -126,7 +128,7 @@ FeatureFrame FeatureObserver::observe(Timestamp t, const SE3& T_W_C, std::mt1993
       if (!visible(origin, *c.p_W, dynamic)) continue;
       FeatureObservation obs;
       obs.track_id = c.id;
-      obs.uv = *uv_true + config_.pixel_sigma_px * Eigen::Vector2d(normal(rng), normal(rng));
+      obs.uv = *uv_true + config_.pixel_sigma_px * draw_vector<2>([&] { return normal(rng); });
       if (!camera_->in_image(obs.uv)) continue;
       const double z = c.p_C.z();
       if (has_depth && z >= calib.depth_min_m && z <= calib.depth_max_m) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "value_checks.hpp"
 
 namespace navaid::simulation {
@@ -115,8 +116,10 @@ std::optional<GpsFix> GnssModel::measure(Timestamp t, const Vec3& p_W_antenna, c
 
   Vec3 p_enu = T_ENU_W * p_W_antenna;
   if (config_.noise) {
-    const Vec3 white(config_.sigma_horizontal_m * normal_(rng_), config_.sigma_horizontal_m * normal_(rng_),
-                     config_.sigma_vertical_m * normal_(rng_));
+    Vec3 white = draw_vector<3>([&] { return normal_(rng_); });
+    white.x() *= config_.sigma_horizontal_m;
+    white.y() *= config_.sigma_horizontal_m;
+    white.z() *= config_.sigma_vertical_m;
     p_enu += white + bias_enu_;
   }
   const Vec3 geo = enu_.to_geodetic(p_enu);

@@ -1,4 +1,5 @@
 #include "navaid/simulation/reaching_user.hpp"
+#include "navaid/core/random_draws.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -67,7 +68,7 @@ void ReachingUser::act(const Instruction& i, const PersonMotion& body, HandMotio
   // The unit's direction in the walking frame (x forward, y left, z up), as the person moves it.
   std::normal_distribution<double> n(0.0, reach_.direction_sigma_rad);
   Vec3 dir = Vec3(i.hand_H.z(), -i.hand_H.x(), -i.hand_H.y()).normalized();
-  dir = (dir + Vec3(n(rng_), n(rng_), n(rng_))).normalized();
+  dir = (dir + draw_vector<3>([&] { return n(rng_); })).normalized();
   const Vec3 size = dir.cwiseAbs();
   const int dominant = size.x() >= size.y() && size.x() >= size.z() ? 0 : size.y() >= size.z() ? 1 : 2;
   const double side = dir.y() >= 0 ? 1.0 : -1.0;

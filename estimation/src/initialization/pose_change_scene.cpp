@@ -5,6 +5,7 @@
 #include <string>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 
 namespace navaid::estimation {
 
@@ -26,7 +27,7 @@ TwoViewScene make_two_view_scene(const SE3& T_j_i, const TwoViewSceneOptions& o)
   const int with_depth = o.depth_features < 0 ? o.points : o.depth_features;
   for (long attempt = 0; static_cast<int>(s.correspondences.size()) < o.points; ++attempt) {
     if (attempt > 1000L * o.points) throw Error("two-view scene: too few points visible in both frames");
-    const Vec2 m(plane(rng), plane(rng));
+    const Vec2 m = draw_vector<2>([&] { return plane(rng); });
     const double Z = depth(rng);
     const Vec3 X_j = T_j_i * Vec3(Z * m.x(), Z * m.y(), Z);
     if (!(X_j.z() > 0.1)) continue;
@@ -34,8 +35,8 @@ TwoViewScene make_two_view_scene(const SE3& T_j_i, const TwoViewSceneOptions& o)
     if (std::abs(m_j.x()) > o.half_fov || std::abs(m_j.y()) > o.half_fov) continue;
     const int k = static_cast<int>(s.correspondences.size());
     PoseChangeCorrespondence c;
-    c.m_i = m + Vec2(noise(rng), noise(rng));
-    c.m_j = m_j + Vec2(noise(rng), noise(rng));
+    c.m_i = m + draw_vector<2>([&] { return noise(rng); });
+    c.m_j = m_j + draw_vector<2>([&] { return noise(rng); });
     if (k < with_depth) c.depth_i = Z * std::max(0.05, 1.0 + o.depth_noise_rel * gauss(rng));
     s.correspondences.push_back(c);
   }
@@ -45,7 +46,7 @@ TwoViewScene make_two_view_scene(const SE3& T_j_i, const TwoViewSceneOptions& o)
     const int k = static_cast<int>((static_cast<long>(n) * o.points) / outliers);
     auto& c = s.correspondences[k];
     Vec2 r;
-    do r = Vec2(plane(rng), plane(rng));
+    do r = draw_vector<2>([&] { return plane(rng); });
     while ((r - c.m_j).norm() * o.focal_px < 20.0);
     c.m_j = r;
     s.outlier[k] = 1;

@@ -1,5 +1,7 @@
 // Cane evaluation rooms: the Smart Cane corridor (seed smart-cane-biped-walking-path-generation,
 // Sec. V-C, Fig. 11) and the BYU augmented-cane obstacle course (seed augmented-cane, Fig. 3.1).
+#include <functional>
+
 #include "scenarios/families.hpp"
 
 namespace navaid::simulation::scenarios {
@@ -100,13 +102,25 @@ void build_obstacle_course(Scenario& s, Rng& rng) {
   // The random family moves them further along the walking line (they stay beside it) and turns
   // them at random.
   const double along = s.random_layout ? 1.0 : 0.1;
+  // Every draw on its own line, in the order of record (random_draws.hpp): a chair's yaw before
+  // its position, y before x.
   const auto yaw = [&](double fixed) { return s.random_layout ? rng.uniform(-3.14159, 3.14159) : fixed; };
-  auto jitter = [&] { return Vec2(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)); };
-  b.chair(Vec2(1.8, 3.0) + jitter() + Vec2(0, s.random_layout ? rng.uniform(-1.0, 0.8) : 0.0), 0.0, yaw(0.3));
-  b.chair(Vec2(5.4, 0.5) + Vec2(rng.uniform(-along, along), rng.uniform(-0.1, 0.1)), 0.0, yaw(1.6));
-  b.chair(Vec2(9.35, 4.5) + Vec2(rng.uniform(-0.1, 0.1), rng.uniform(-along, along)), 0.0, yaw(3.1));
-  b.chair(Vec2(7.75, 5.6) + Vec2(rng.uniform(-0.1, 0.0), rng.uniform(-0.1, 0.1)), 0.0, yaw(-0.4));
-  b.chair(Vec2(5.6, 6.0) + jitter() * (s.random_layout ? 8.0 : 1.0), 0.0, yaw(2.0));
+  const auto offset = [&](double x_lo, double x_hi, double y_lo, double y_hi) -> Vec2 {
+    const double y = rng.uniform(y_lo, y_hi);
+    return Vec2(rng.uniform(x_lo, x_hi), y);
+  };
+  const auto chair = [&](const Vec2& at, double fixed_yaw, const std::function<Vec2()>& moved) {
+    const double a = yaw(fixed_yaw);
+    b.chair(at + moved(), 0.0, a);
+  };
+  chair(Vec2(1.8, 3.0), 0.3, [&]() -> Vec2 {
+    const double shift = s.random_layout ? rng.uniform(-1.0, 0.8) : 0.0;
+    return offset(-0.1, 0.1, -0.1, 0.1) + Vec2(0, shift);
+  });
+  chair(Vec2(5.4, 0.5), 1.6, [&]() -> Vec2 { return offset(-along, along, -0.1, 0.1); });
+  chair(Vec2(9.35, 4.5), 3.1, [&]() -> Vec2 { return offset(-0.1, 0.1, -along, along); });
+  chair(Vec2(7.75, 5.6), -0.4, [&]() -> Vec2 { return offset(-0.1, 0.0, -0.1, 0.1); });
+  chair(Vec2(5.6, 6.0), 2.0, [&]() -> Vec2 { return offset(-0.1, 0.1, -0.1, 0.1) * (s.random_layout ? 8.0 : 1.0); });
 
   // Hanging obstacles: head-high over the south leg (deliberate), waist-high beside the east leg.
   // Random family: the head-high one anywhere over the south leg, the waist-high one anywhere

@@ -100,7 +100,10 @@ void build_route1(Scenario& s, Rng& rng) {
   // walker faces at the end of the route.
   b.horizontal_patch(Vec2(236.0, 1.5), Vec2(270.0, 40.0), 0.0, C::kTerrain, 0.3);
   b.landmark(Vec2(240.0, 3.6), 0.0, 3.0, kPi / 2);
-  for (int i = 0; i < 12; ++i) b.tree(Vec2(rng.uniform(240.0, 268.0), rng.uniform(8.0, 38.0)), 0.0, 3.0, 2.4);
+  for (int i = 0; i < 12; ++i) {
+    const double y = rng.uniform(8.0, 38.0);  // y before x (random_draws.hpp: the order of record)
+    b.tree(Vec2(rng.uniform(240.0, 268.0), y), 0.0, 3.0, 2.4);
+  }
 
   // People on the sidewalks and crossing the street; traffic on both lanes.
   auto person = [&](std::vector<Vec2> path, double speed, double start) {
@@ -165,7 +168,10 @@ void build_route2(Scenario& s, Rng& rng) {
   for (double tx = 8.0; tx < 296.0; tx += 9.0) {
     const bool near_junction = (tx > 84.0 && tx < 100.0) || (tx > 184.0 && tx < 200.0);
     if (near_junction || (tx > 226.0 && tx < 256.0)) continue;
-    b.tree(Vec2(tx + rng.uniform(-0.5, 0.5), -1.35), 0.0, rng.uniform(2.7, 3.3), rng.uniform(1.8, 2.4));
+    // Drawn last argument first (random_draws.hpp: the order of record).
+    const double crown_radius = rng.uniform(1.8, 2.4);
+    const double crown_bottom_z = rng.uniform(2.7, 3.3);
+    b.tree(Vec2(tx + rng.uniform(-0.5, 0.5), -1.35), 0.0, crown_bottom_z, crown_radius);
   }
   for (double px = 20.0; px < 296.0; px += 36.0)
     if (!((px > 84.0 && px < 100.0) || (px > 184.0 && px < 200.0) || (px > 226.0 && px < 256.0)))

@@ -45,8 +45,11 @@ Scenario make_flight_room(const AxisAlignedBox& flown, std::uint64_t seed, doubl
            a.y() > flown.max.y() + band;
   };
   for (int placed = 0, tries = 0; placed < 24 && tries < 400; ++tries) {
-    const Vec2 half(rng.uniform(0.15, 0.5), rng.uniform(0.15, 0.5));
-    const Vec2 c(rng.uniform(lo.x() + half.x(), hi.x() - half.x()), rng.uniform(lo.y() + half.y(), hi.y() - half.y()));
+    // Each coordinate drawn on its own line, y before x (random_draws.hpp: the order of record).
+    const double half_y = rng.uniform(0.15, 0.5);
+    const Vec2 half(rng.uniform(0.15, 0.5), half_y);
+    const double c_y = rng.uniform(lo.y() + half.y(), hi.y() - half.y());
+    const Vec2 c(rng.uniform(lo.x() + half.x(), hi.x() - half.x()), c_y);
     if (!outside_flight(c - half, c + half)) continue;
     const double top = rng.uniform(0.3, std::min(2.5, height - 0.2));
     b.box(Vec3(c.x() - half.x(), c.y() - half.y(), floor_z), Vec3(c.x() + half.x(), c.y() + half.y(), floor_z + top),
