@@ -25,6 +25,7 @@
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "ros_bag_images.hpp"
+#include "ros_bag_structure.hpp"
 
 namespace navaid::io {
 namespace {
@@ -57,6 +58,7 @@ class BagFile {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw IoError(path.string(), "does not exist or is not a file");
     if (!is_ros_bag(path)) throw IoError(path.string(), "is not a ROS 1 bag (no '#ROSBAG V2.0' header)");
+    detail::check_ros_bag_structure(path);  // rosbag_storage trusts the bag's lengths
     try {
       bag_.open(path.string(), rosbag::bagmode::Read);
       rosbag::View all(bag_);

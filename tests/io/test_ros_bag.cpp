@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <random>
 
@@ -302,6 +304,38 @@ TEST_F(RosBagTest, CorruptBagsFailCleanly) {
   const auto message = testing::error_message<IoError>([&] { read_ros_bag(dir / "text.bag"); });
   EXPECT_NE(message.find("is not a ROS 1 bag"), std::string::npos) << message;
   EXPECT_TRUE(testing::expect_throw<IoError>([&] { read_ros_bag(dir / "missing.bag"); }));
+}
+
+// Found by fuzz_ros_bag: a header field whose length runs past its record header made
+// rosbag_storage's ros::Header::parse read beyond its buffer (a heap-buffer-overflow under ASan).
+// The structural check (ros_bag_structure.cpp) now refuses it, and the other lies a bag can tell
+// rosbag_storage, before it reads them.
+TEST_F(RosBagTest, LengthsThatLieAreRefusedBeforeRosbagStorageReadsThem) {
+  const fs::path finding = fs::path(NAVAID_SOURCE_DIR) / "tests/io/fixtures/ros-bag-findings/header-field-overruns-header.bag";
+  auto message = testing::error_message<IoError>([&] { list_ros_bag_topics(finding); });
+  EXPECT_NE(message.find("a header field of 530 bytes overruns its header"), std::string::npos) << message;
+  EXPECT_NE(message.find("at byte 29"), std::string::npos) << message;
+
+  // Uncompressed bags, edited: a field length, a typed field's size, an index entry, a chunk size.
+  const std::string bytes = testing::read_text(bag("two_imus.bag"));
+  ScratchDir dir("ros-bag-lies");
+  const auto with = [&](const std::string& name, const std::function<void(std::string&)>& edit) {
+    std::string b = bytes;
+    edit(b);
+    const fs::path path = dir / name;
+    std::ofstream(path, std::ios::binary) << b;
+    return testing::error_message<IoError>([&] { read_ros_bag(path); });
+  };
+  const auto set_u32 = [](std::string& b, std::size_t at, std::uint32_t v) { std::memcpy(&b[at], &v, 4); };
+  // The bag header record starts at byte 13: its first field's length is at 17.
+  message = with("field.bag", [&](std::string& b) { set_u32(b, 17, 0x7fffffff); });
+  EXPECT_NE(message.find("overruns its header"), std::string::npos) << message;
+  message = with("header.bag", [&](std::string& b) { set_u32(b, 13, 0xfffffff0); });
+  EXPECT_NE(message.find("overruns the file"), std::string::npos) << message;
+  message = with("typed.bag", [&](std::string& b) { b.replace(b.find("index_pos="), 10, "index_pox="); });
+  EXPECT_NE(message.find("the record has no 'index_pos' field"), std::string::npos) << message;
+  message = with("cut.bag", [&](std::string& b) { b.resize(b.size() - 7); });
+  EXPECT_NE(message.find("not a well-formed ROS bag"), std::string::npos) << message;
 }
 
 // Every real bag of ../shared/data/ros-bags: the counts of BAG_SUMMARY.txt, less what the reader
