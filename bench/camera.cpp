@@ -43,7 +43,8 @@ Samples samples(const navaid::CameraModel& cam) {
   std::uniform_real_distribution<double> u(0.0, cam.width() - 1.0), v(0.0, cam.height() - 1.0);
   std::uniform_real_distribution<double> depth(0.5, 20.0);
   while (s.pixels.size() < 1024) {
-    const Eigen::Vector2d px(u(rng), v(rng));
+    const double y = v(rng);  // y before x: the order of record (random_draws.hpp)
+    const Eigen::Vector2d px(u(rng), y);
     const auto bearing = cam.unproject(px);
     if (!bearing) continue;
     s.pixels.push_back(px);

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/gps_position_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
@@ -37,8 +38,9 @@ std::vector<ImuSample> samples(int count) {
   std::vector<ImuSample> s(count);
   for (int k = 0; k < count; ++k) {
     s[k].t = Timestamp{k} * 5'000'000;
-    s[k].gyro = Vec3(n(rng), n(rng), n(rng));
-    s[k].accel = Vec3(n(rng), n(rng), 9.81 + n(rng));
+    s[k].gyro = draw_vector<3>([&] { return n(rng); });
+    s[k].accel = draw_vector<3>([&] { return n(rng); });
+    s[k].accel.z() += 9.81;
   }
   return s;
 }

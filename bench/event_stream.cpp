@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "navaid/core/random_draws.hpp"
 #include "navaid/io/event_stream.hpp"
 #include "navaid/io/navaid_recording.hpp"
 
@@ -27,8 +28,9 @@ Recording make_recording() {
   for (Timestamp t = kT0; t < kT0 + kDuration; t += 5'000'000) {
     ImuSample s;
     s.t = t + jitter(rng);
-    s.gyro = Vec3(normal(rng), normal(rng), normal(rng)) * 0.1;
-    s.accel = Vec3(normal(rng), normal(rng), 9.81 + normal(rng));
+    s.gyro = draw_vector<3>([&] { return normal(rng); }) * 0.1;
+    s.accel = draw_vector<3>([&] { return normal(rng); });
+    s.accel.z() += 9.81;
     r.imu.push_back(s);
   }
   std::uint64_t index = 0;
@@ -49,7 +51,7 @@ Recording make_recording() {
     r.gps.push_back(f);
   }
   for (Timestamp t = kT0 + 2'000'000; t < kT0 + kDuration; t += 20'000'000) {
-    r.mag.push_back(MagSample{t + jitter(rng), Vec3(normal(rng), normal(rng), normal(rng)) * 2e-5});
+    r.mag.push_back(MagSample{t + jitter(rng), draw_vector<3>([&] { return normal(rng); }) * 2e-5});
   }
   return r;
 }

@@ -16,6 +16,7 @@
 
 #include <ceres/loss_function.h>
 
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
@@ -70,7 +71,7 @@ std::shared_ptr<MarginalizationPrior> previous_prior(const std::vector<double*>&
 void make_window(Window& w) {
   std::mt19937_64 rng(42);
   std::normal_distribution<double> normal(0.0, 1.0);
-  const auto noise3 = [&](double sigma) -> Vec3 { return Vec3(normal(rng), normal(rng), normal(rng)) * sigma; };
+  const auto noise3 = [&](double sigma) -> Vec3 { return draw_vector<3>([&] { return normal(rng); }) * sigma; };
   ImuCalibration calibration;
   calibration.rate_hz = 200.0;
   calibration.gyro_noise_density = 1.6968e-4;
@@ -88,7 +89,8 @@ void make_window(Window& w) {
   for (int k = 0; k < kKeyframes; ++k) {
     const simulation::KinematicState s = walk.state(t0 + spacing * k);
     truth[k] = s.T_W_B;
-    pose_to_block(SE3(s.T_W_B.q * Quat(Eigen::AngleAxisd(0.01, noise3(1.0).normalized())), s.T_W_B.t + noise3(0.02)),
+    const Vec3 dt = noise3(0.02);  // drawn last argument first: the order of record (random_draws.hpp)
+    pose_to_block(SE3(s.T_W_B.q * Quat(Eigen::AngleAxisd(0.01, noise3(1.0).normalized())), s.T_W_B.t + dt),
                   w.pose[k].data());
     Eigen::Map<Eigen::Matrix<double, 9, 1>>(w.speed_bias[k].data()) << s.v_W + noise3(0.02), noise3(1e-3),
         noise3(1e-2);
@@ -139,9 +141,10 @@ void make_window(Window& w) {
     const int a = f < kAnchoredInOldest ? 0 : first_other(rng);
     const int last = std::min(kKeyframes - 1, a + length(rng) - 1);
     const double z = depth(rng);
-    const Vec3 P_ca(xy(rng) * z, xy(rng) * z, z);
+    const double y = xy(rng) * z;  // y before x: the order of record (random_draws.hpp)
+    const Vec3 P_ca(xy(rng) * z, y, z);
     const Vec3 P_w = truth[a] * (T_B_C * P_ca);
-    const Eigen::Vector2d m_a = P_ca.head<2>() / z + Eigen::Vector2d(normal(rng), normal(rng)) * kSigmaPx / kFocal;
+    const Eigen::Vector2d m_a = P_ca.head<2>() / z + draw_vector<2>([&] { return normal(rng); }) * kSigmaPx / kFocal;
     w.lambda[f] = (1.0 + 0.03 * normal(rng)) / z;
     add({std::make_shared<InverseDepthFactor>(z * (1.0 + 0.01 * normal(rng)), sigma_lambda), nullptr,
          {&w.lambda[f]}, {}});
@@ -149,7 +152,7 @@ void make_window(Window& w) {
       const Vec3 P_ct = T_B_C.inverse() * (truth[t].inverse() * P_w);
       if (P_ct.z() < 0.5) break;  // walked past it
       const Eigen::Vector2d m_t =
-          P_ct.head<2>() / P_ct.z() + Eigen::Vector2d(normal(rng), normal(rng)) * kSigmaPx / kFocal;
+          P_ct.head<2>() / P_ct.z() + draw_vector<2>([&] { return normal(rng); }) * kSigmaPx / kFocal;
       const std::vector<double*> blocks{w.pose[a].data(), w.pose[t].data(), w.extrinsic.data(), &w.lambda[f]};
       add({std::make_shared<ReprojectionFactor>(m_a, m_t, kFocal, kSigmaPx), cauchy, blocks, {}});
       add({std::make_shared<Depth3dFactor>(m_a, m_t, P_ct.z() * (1.0 + 0.01 * normal(rng)), kFocal, sigma_lambda,

@@ -136,8 +136,12 @@ TEST(Camera, ProjectUnprojectRoundTripForPointsInView) {
     std::uniform_real_distribution<double> depth(0.2, 30.0);
     int checked = 0;
     for (int attempt = 0; attempt < 10000 && checked < 200; ++attempt) {
-      // Points are drawn through the pinhole projection, then those the model sees are kept.
-      const Vec3 p = depth(rng) * Vec3((u(rng) - calib.cx) / calib.fx, (v(rng) - calib.cy) / calib.fy, 1.0);
+      // Points are drawn through the pinhole projection, then those the model sees are kept. Drawn
+      // v, u, depth: GCC's order for the arguments and Eigen's operator* operands, the order of
+      // record (random_draws.hpp).
+      const double y = (v(rng) - calib.cy) / calib.fy;
+      const double x = (u(rng) - calib.cx) / calib.fx;
+      const Vec3 p = depth(rng) * Vec3(x, y, 1.0);
       const auto px = cam->project(p);
       ASSERT_TRUE(px) << calib.name;
       if (!cam->in_image(*px)) continue;

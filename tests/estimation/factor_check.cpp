@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "navaid/core/random_draws.hpp"
+
 namespace navaid::estimation::testing {
 
 namespace {
@@ -79,7 +81,7 @@ Eigen::VectorXd evaluate(const ceres::CostFunction& f, const std::vector<double*
 Quat random_rotation(std::mt19937_64& rng, double max_angle) {
   std::normal_distribution<double> n(0.0, 1.0);
   std::uniform_real_distribution<double> u(0.0, max_angle);
-  Vec3 axis(n(rng), n(rng), n(rng));
+  const Vec3 axis = draw_vector<3>([&] { return n(rng); });
   return so3_exp(axis.normalized() * u(rng));
 }
 

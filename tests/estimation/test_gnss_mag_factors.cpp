@@ -53,7 +53,8 @@ TEST(GpsPositionFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
     double align[4] = {yaw(rng), t.x(), t.y(), t.z()};
     Mat3 A = Mat3::Random();
     const Mat3 cov = A * A.transpose() + Mat3::Identity();  // correlated, full
-    const GpsPositionFactor f(random_vector(rng, 50.0), cov, random_vector(rng, 0.5));
+    const Vec3 lever = random_vector(rng, 0.5);  // drawn last argument first: the order of record (random_draws.hpp)
+    const GpsPositionFactor f(random_vector(rng, 50.0), cov, lever);
     EXPECT_TRUE(jacobians_match(f, {pose, align}, {&pm, nullptr})) << "trial " << trial;
   }
 }
@@ -88,8 +89,8 @@ TEST(GpsPositionBiasFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
     const Vec3 t = random_vector(rng, 50.0), b = random_vector(rng, 3.0);
     double align[4] = {0.1 * trial - 0.4, t.x(), t.y(), t.z()}, bias[3] = {b.x(), b.y(), b.z()};
     Mat3 A = Mat3::Random();
-    const GpsPositionBiasFactor f(random_vector(rng, 50.0), A * A.transpose() + Mat3::Identity(),
-                                  random_vector(rng, 0.5));
+    const Vec3 lever = random_vector(rng, 0.5);  // drawn last argument first: the order of record (random_draws.hpp)
+    const GpsPositionBiasFactor f(random_vector(rng, 50.0), A * A.transpose() + Mat3::Identity(), lever);
     EXPECT_TRUE(jacobians_match(f, {pose, align, bias}, {&pm, nullptr, nullptr})) << "trial " << trial;
   }
 }
@@ -140,7 +141,10 @@ TEST(MagnetometerYawFactor, ZeroAtTruthWithTheSimulatedFieldAndYawKnownAnswer) {
   for (int trial = 0; trial < 20; ++trial) {
     const double yaw_ew = angle(rng), body_yaw = angle(rng);
     const SE3 T_ENU_W(quat_from_rpy(0.0, 0.0, yaw_ew), random_vector(rng, 10.0));
-    const SE3 T_W_B(quat_from_rpy(0.3 * angle(rng), 0.2 * angle(rng), body_yaw), random_vector(rng, 10.0));
+    // Drawn last argument first: the order of record (random_draws.hpp).
+    const Vec3 t_W_B = random_vector(rng, 10.0);
+    const double pitch = 0.2 * angle(rng);
+    const SE3 T_W_B(quat_from_rpy(0.3 * angle(rng), pitch, body_yaw), t_W_B);
     const MagnetometerYawFactor f(model.expected_field_B(T_ENU_W, T_W_B), cfg.field_enu_t, sigma);
     double pose[kPoseSize], align[4] = {yaw_ew, T_ENU_W.t.x(), T_ENU_W.t.y(), T_ENU_W.t.z()};
     pose_to_block(T_W_B, pose);

@@ -10,6 +10,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/core/geodesy.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/gps_registration.hpp"
 #include "navaid/simulation/gnss_model.hpp"
 #include "navaid/simulation/ray_caster.hpp"
@@ -70,8 +71,11 @@ Mat3 random_covariance(std::mt19937_64& rng, bool anisotropic) {
     const double sh = u(rng);
     return Vec3(sh * sh, sh * sh, 4.0 * sh * sh).asDiagonal();
   }
-  const Mat3 A = Eigen::Vector3d(u(rng), u(rng), 2.0 * u(rng)).asDiagonal();
-  const Mat3 R = Eigen::AngleAxisd(u(rng) * 2.0, Vec3::UnitZ()) * Eigen::AngleAxisd(0.2 * u(rng), Vec3::UnitX()).toRotationMatrix();
+  // Drawn last first, as GCC evaluates arguments and Eigen's operator* operands: the order of
+  // record (random_draws.hpp).
+  const Mat3 A = draw_vector<3>([&] { return u(rng); }).cwiseProduct(Vec3(1.0, 1.0, 2.0)).asDiagonal();
+  const double tilt = 0.2 * u(rng);
+  const Mat3 R = Eigen::AngleAxisd(u(rng) * 2.0, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitX()).toRotationMatrix();
   return R * A * A * R.transpose();  // correlated east/north/up
 }
 
@@ -191,7 +195,7 @@ TEST(GpsRegistration, ErrorIsConsistentWithTheReportedCovarianceMonteCarlo) {
         std::vector<GpsRegistrationPair> pairs;
         for (const Vec3& a : walk) {
           const Mat3 cov = random_covariance(rng, anisotropic);
-          const Vec3 noise = cov.llt().matrixL() * Vec3(normal(rng), normal(rng), normal(rng));
+          const Vec3 noise = cov.llt().matrixL() * draw_vector<3>([&] { return normal(rng); });
           pairs.push_back({fix_at(apply(truth, a) + noise, cov), a});
         }
         GpsRegistrationOptions o;
@@ -228,9 +232,9 @@ TEST(GpsRegistration, TimeCorrelatedErrorsGetAConsistentSandwichCovariance) {
   double sum_independent = 0, sum_correlated = 0;
   for (int run = 0; run < kRuns; ++run) {
     std::vector<GpsRegistrationPair> pairs;
-    Vec3 u(normal(rng), normal(rng), normal(rng));
+    Vec3 u = draw_vector<3>([&] { return normal(rng); });
     for (std::size_t i = 0; i < walk.size(); ++i) {
-      if (i > 0) u = phi * u + std::sqrt(1.0 - phi * phi) * Vec3(normal(rng), normal(rng), normal(rng));
+      if (i > 0) u = phi * u + std::sqrt(1.0 - phi * phi) * draw_vector<3>([&] { return normal(rng); });
       const Mat3 cov = random_covariance(rng, true);
       GpsFix fix = fix_at(apply(truth, walk[i]) + Mat3(cov.llt().matrixL()) * u, cov);
       fix.t = seconds_to_ns(1000.0 + static_cast<double>(i));
@@ -257,9 +261,13 @@ TEST(GpsRegistration, NeedsMotionBeforeTheYawIsObservable) {
   std::normal_distribution<double> normal;
   const Eigen::Vector4d truth = alignment_of(0.4, Vec3(10.0, 20.0, 1.0));
   const Mat3 cov = Vec3(4.0, 4.0, 9.0).asDiagonal();
+  const auto horizontal_noise = [&]() -> Vec3 {
+    const double y = normal(rng);  // y before x: the order of record (random_draws.hpp)
+    return Vec3(normal(rng), y, 0);
+  };
   auto pairs_on = [&](const std::vector<Vec3>& walk) {
     std::vector<GpsRegistrationPair> pairs;
-    for (const Vec3& a : walk) pairs.push_back({fix_at(apply(truth, a) + 2.0 * Vec3(normal(rng), normal(rng), 0), cov), a});
+    for (const Vec3& a : walk) pairs.push_back({fix_at(apply(truth, a) + 2.0 * horizontal_noise(), cov), a});
     return pairs;
   };
   // A single point, then standing still for a minute (VIO jitter of a few cm).
@@ -268,7 +276,7 @@ TEST(GpsRegistration, NeedsMotionBeforeTheYawIsObservable) {
   EXPECT_EQ(r.status, GpsRegistrationStatus::kTooFewFixes);
   EXPECT_FALSE(r.registered());
   EXPECT_EQ(r.covariance.size(), 0);
-  for (int i = 0; i < 60; ++i) still.push_back(Vec3(1.0, 2.0, 1.7) + 0.03 * Vec3(normal(rng), normal(rng), 0));
+  for (int i = 0; i < 60; ++i) still.push_back(Vec3(1.0, 2.0, 1.7) + 0.03 * horizontal_noise());
   r = register_gps_to_world(pairs_on(still), kOrigin);
   EXPECT_EQ(r.status, GpsRegistrationStatus::kInsufficientMotion);
   EXPECT_LT(r.spread_m, 0.1);
@@ -303,8 +311,10 @@ TEST(GpsRegistration, AMultipathJumpBarelyMovesTheRobustEstimate) {
   const Eigen::Vector4d truth = alignment_of(2.0, Vec3(5.0, -8.0, 0.5));
   const Mat3 cov = Vec3(4.0, 4.0, 9.0).asDiagonal();
   std::vector<GpsRegistrationPair> clean;
-  for (const Vec3& a : walk)
-    clean.push_back({fix_at(apply(truth, a) + Vec3(2 * normal(rng), 2 * normal(rng), 3 * normal(rng)), cov), a});
+  for (const Vec3& a : walk) {
+    const Vec3 noise = draw_vector<3>([&] { return normal(rng); }).cwiseProduct(Vec3(2, 2, 3));
+    clean.push_back({fix_at(apply(truth, a) + noise, cov), a});
+  }
   const Vec3 jump(21.2, 21.2, 0.0);  // 30 m north-east, a reflection off a facade
   auto one = clean;                  // one fix mid-walk
   one[30].fix = fix_at(apply(truth, walk[30]) + jump, cov);

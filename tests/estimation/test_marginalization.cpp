@@ -19,6 +19,7 @@
 
 #include "factor_check.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/imu_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
@@ -161,7 +162,7 @@ Batch make_batch(std::uint64_t seed) {
   Batch batch;
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  const auto noise3 = [&](double sigma) -> Vec3 { return Vec3(normal(rng), normal(rng), normal(rng)) * sigma; };
+  const auto noise3 = [&](double sigma) -> Vec3 { return draw_vector<3>([&] { return normal(rng); }) * sigma; };
 
   const simulation::WalkerTrajectory walk({{0.0, 0.0}, {8.0, 0.0}, {8.0, 6.0}});
   simulation::ImuModelOptions imu_options;
@@ -176,9 +177,10 @@ Batch make_batch(std::uint64_t seed) {
   for (int k = 0; k < Batch::kKeyframes; ++k) {
     const simulation::KinematicState s = walk.state(times[k]);
     truth[k] = s.T_W_B;
-    // Estimates near the truth (the window's state is never exact).
-    pose_to_block(SE3(s.T_W_B.q * Quat(Eigen::AngleAxisd(0.01, noise3(1.0).normalized())),
-                      s.T_W_B.t + noise3(0.02)),
+    // Estimates near the truth (the window's state is never exact); the translation's noise drawn
+    // first, the last argument first: the order of record (random_draws.hpp).
+    const Vec3 dt = noise3(0.02);
+    pose_to_block(SE3(s.T_W_B.q * Quat(Eigen::AngleAxisd(0.01, noise3(1.0).normalized())), s.T_W_B.t + dt),
                   batch.pose[k].data());
     Eigen::Map<Eigen::Matrix<double, 9, 1>> sb(batch.speed_bias[k].data());
     sb << s.v_W + noise3(0.02), imu_options.initial_gyro_bias + noise3(1e-3),
@@ -220,15 +222,16 @@ Batch make_batch(std::uint64_t seed) {
     const int a = f % 2;  // anchors in keyframes 0 and 1
     batch.anchor.push_back(a);
     const double z = depth(rng);
-    const Vec3 P_ca(xy(rng) * z, xy(rng) * z, z);
+    const double y = xy(rng) * z;  // y before x: the order of record (random_draws.hpp)
+    const Vec3 P_ca(xy(rng) * z, y, z);
     const Vec3 P_w = truth[a] * (T_B_C * P_ca);
-    const Eigen::Vector2d m_a = P_ca.head<2>() / z + Eigen::Vector2d(normal(rng), normal(rng)) * pixel;
+    const Eigen::Vector2d m_a = P_ca.head<2>() / z + draw_vector<2>([&] { return normal(rng); }) * pixel;
     batch.lambda[f][0] = (1.0 / z) * (1.0 + 0.03 * normal(rng));
     batch.factors.push_back({std::make_shared<InverseDepthFactor>(z + 0.02 * normal(rng), sigma_lambda), nullptr,
                              {batch.lambda[f].data()}});
     for (int t = a + 1; t < Batch::kKeyframes; ++t) {
       const Vec3 P_ct = T_B_C.inverse() * (truth[t].inverse() * P_w);
-      const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + Eigen::Vector2d(normal(rng), normal(rng)) * pixel;
+      const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + draw_vector<2>([&] { return normal(rng); }) * pixel;
       const std::vector<double*> blocks{batch.pose[a].data(), batch.pose[t].data(), batch.extrinsic.data(),
                                         batch.lambda[f].data()};
       batch.factors.push_back({std::make_shared<ReprojectionFactor>(m_a, m_t, kFocal, kSigmaPx), cauchy, blocks});
@@ -341,9 +344,10 @@ TEST(Marginalization, ThreeParameterLandmarksGiveTheSchurComplement) {
     batch.landmark_anchor.push_back(a);
     const SE3 T_W_Ca = pose_from_block(batch.pose[a].data()) * T_B_C;
     const double z = depth(rng);
-    const Vec3 P_ca(xy(rng) * z, xy(rng) * z, z);
+    const double y = xy(rng) * z;  // y before x: the order of record (random_draws.hpp)
+    const Vec3 P_ca(xy(rng) * z, y, z);
     const Vec3 P_w = T_W_Ca * P_ca;
-    const Eigen::Vector2d m_a = P_ca.head<2>() / z + Eigen::Vector2d(normal(rng), normal(rng)) * pixel;
+    const Eigen::Vector2d m_a = P_ca.head<2>() / z + draw_vector<2>([&] { return normal(rng); }) * pixel;
     auto& l = batch.landmark[f];
     l = {m_a.x(), m_a.y(), (1.0 / z) * (1.0 + 0.03 * normal(rng))};
     batch.factors.push_back({std::make_shared<AnchorBearingFactor>(m_a, kFocal, kSigmaPx), nullptr, {l.data()}});
@@ -352,7 +356,7 @@ TEST(Marginalization, ThreeParameterLandmarksGiveTheSchurComplement) {
     for (int t = a + 1; t < Batch::kKeyframes; ++t) {
       const SE3 T_W_Ct = pose_from_block(batch.pose[t].data()) * T_B_C;
       const Vec3 P_ct = T_W_Ct.inverse() * P_w;
-      const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + Eigen::Vector2d(normal(rng), normal(rng)) * pixel;
+      const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + draw_vector<2>([&] { return normal(rng); }) * pixel;
       batch.factors.push_back({std::make_shared<LandmarkReprojectionFactor>(m_t, kFocal, kSigmaPx), cauchy,
                                {batch.pose[a].data(), batch.pose[t].data(), batch.extrinsic.data(), l.data()}});
     }
@@ -401,7 +405,8 @@ TEST(Marginalization, PriorPlusRemainingFactorsKeepsTheFullOptimum) {
   std::mt19937_64 rng(5);
   for (int k = 1; k < Batch::kKeyframes; ++k) {
     const SE3 T = pose_from_block(batch.pose[k].data());
-    pose_to_block(SE3(T.q * random_rotation(rng, 0.02), T.t + random_vector(rng, 0.03)), batch.pose[k].data());
+    const Vec3 dt = random_vector(rng, 0.03);  // drawn last argument first: the order of record (random_draws.hpp)
+    pose_to_block(SE3(T.q * random_rotation(rng, 0.02), T.t + dt), batch.pose[k].data());
     for (double& v : batch.speed_bias[k]) v += 0.01;
   }
   for (auto& l : batch.lambda) l[0] *= 1.05;
@@ -712,7 +717,8 @@ TEST(Marginalization, FactorJacobiansMatchNumericDifferentiationOnTheManifold) {
       moved[i] = prior->x0[i];
       if (prior->kinds[i] == BlockKind::kPose) {
         SE3 T = pose_from_block(moved[i].data());
-        pose_to_block(SE3(random_rotation(rng, 2.5) * T.q, T.t + random_vector(rng, 0.5)), moved[i].data());
+        const Vec3 dt = random_vector(rng, 0.5);  // drawn last argument first: the order of record (random_draws.hpp)
+        pose_to_block(SE3(random_rotation(rng, 2.5) * T.q, T.t + dt), moved[i].data());
         if (trial % 2 == 1) {
           for (int k = 3; k < kPoseSize; ++k) moved[i][k] *= -1.3;
         }

@@ -24,10 +24,13 @@ TEST(StatePriorFactor, JacobiansMatchNumericOnTheManifolds) {
   const auto manifold = make_pose_manifold();
   for (int trial = 0; trial < 5; ++trial) {
     const SE3 T0 = testing::random_pose(rng);
-    const StatePriorFactor f(T0, testing::random_vector(rng, 1), testing::random_vector(rng, 0.1),
-                             testing::random_vector(rng, 0.1), random_covariance(rng));
+    // Drawn last argument first: the order of record (random_draws.hpp).
+    const Mat15 covariance = random_covariance(rng);
+    const Vec3 b_a = testing::random_vector(rng, 0.1), b_g = testing::random_vector(rng, 0.1);
+    const StatePriorFactor f(T0, testing::random_vector(rng, 1), b_g, b_a, covariance);
     double pose[7], sb[9];
-    pose_to_block(T0 * SE3(testing::random_rotation(rng, 0.5), testing::random_vector(rng, 0.3)), pose);
+    const Vec3 t = testing::random_vector(rng, 0.3);
+    pose_to_block(T0 * SE3(testing::random_rotation(rng, 0.5), t), pose);
     for (double& x : sb) x = std::normal_distribution<double>(0, 0.5)(rng);
     EXPECT_TRUE(testing::jacobians_match(f, {pose, sb}, {manifold.get(), nullptr}));
   }

@@ -9,6 +9,7 @@
 
 #include "factor_check.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
@@ -68,8 +69,11 @@ struct RandomCase {
 RandomCase random_case(std::mt19937_64& rng) {
   RandomCase c;
   const SE3 T_W_Ba = random_pose(rng);
-  const SE3 T_B_C(random_rotation(rng), random_vector(rng, 0.1));
-  const SE3 T_Ca_Ct(random_rotation(rng, 0.3), random_vector(rng, 0.4));
+  // Drawn last argument first: the order of record (random_draws.hpp).
+  const Vec3 t_B_C = random_vector(rng, 0.1);
+  const SE3 T_B_C(random_rotation(rng), t_B_C);
+  const Vec3 t_Ca_Ct = random_vector(rng, 0.4);
+  const SE3 T_Ca_Ct(random_rotation(rng, 0.3), t_Ca_Ct);
   pose_to_block(T_W_Ba, c.b.anchor);
   pose_to_block(T_W_Ba * T_B_C * T_Ca_Ct * T_B_C.inverse(), c.b.target);
   pose_to_block(T_B_C, c.b.extrinsic);
@@ -77,8 +81,8 @@ RandomCase random_case(std::mt19937_64& rng) {
   c.b.lambda[0] = 1.0 / depth(rng);
   c.b.td[0] = td(rng);
   for (TimedObservation* o : {&c.anchor, &c.target}) {
-    o->m = Eigen::Vector2d(xy(rng), xy(rng));
-    o->velocity = Eigen::Vector2d(speed(rng), speed(rng));
+    o->m = draw_vector<2>([&] { return xy(rng); });
+    o->velocity = draw_vector<2>([&] { return speed(rng); });
     o->td0_s = td(rng);
   }
   c.depth = depth(rng);
@@ -196,7 +200,8 @@ void recovers_time_offset(Make make, std::uint64_t seed) {
   while (features.size() < 30) {
     const double z = depth(rng);
     const SE3 T_W_Ca = motion.T_W_B(t_anchor) * T_B_C;
-    const Vec3 p_W = T_W_Ca * Vec3(xy(rng) * z, xy(rng) * z, z);
+    const double y = xy(rng) * z;  // y before x: the order of record (random_draws.hpp)
+    const Vec3 p_W = T_W_Ca * Vec3(xy(rng) * z, y, z);
     const Seen a = observe(motion, T_B_C, p_W, t_anchor + td_true - td0_anchor);
     const Seen t = observe(motion, T_B_C, p_W, t_target + td_true - td0_target);
     if (t.z < 0.5) continue;

@@ -7,6 +7,7 @@
 #include "factor_check.hpp"
 #include "two_view_scene.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/inverse_depth_factor.hpp"
 #include "navaid/estimation/factors/pose_parametrization.hpp"
@@ -151,7 +152,7 @@ TEST(Depth3dFactor, FullCovarianceWhitensSimulatedDepthNoise) {
     Mat3 second_moment = Mat3::Zero();
     const int draws = 20000;
     for (int i = 0; i < draws; ++i) {
-      const Eigen::Vector2d m = m_true + sigma_px / f_px * Eigen::Vector2d(n(rng), n(rng));
+      const Eigen::Vector2d m = m_true + sigma_px / f_px * draw_vector<2>([&] { return n(rng); });
       const double Z = f_px * b / (f_px * b / P_true.z() + sigma_d * n(rng));
       const Depth3dFactor factor(m_true, m, Z, f_px, sigma_lambda, sigma_px, model);
       Vec3 r;

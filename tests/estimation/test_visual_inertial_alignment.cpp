@@ -13,6 +13,7 @@
 
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/estimation/initialization/window_sfm.hpp"
 #include "estimator_fixtures.hpp"
 #include "test_support.hpp"
@@ -72,8 +73,8 @@ Window make_window(const WindowSpec& s) {
     w_prev = w_true;
     ImuSample m;
     m.t = t;
-    m.gyro = w_true + s.gyro_bias + s.gyro_sigma * Vec3(n01(rng), n01(rng), n01(rng));
-    m.accel = a_prev + s.accel_sigma * Vec3(n01(rng), n01(rng), n01(rng));
+    m.gyro = w_true + s.gyro_bias + s.gyro_sigma * draw_vector<3>([&] { return n01(rng); });
+    m.accel = a_prev + s.accel_sigma * draw_vector<3>([&] { return n01(rng); });
     w.imu.push_back(m);
     if (k % kSamplesPerKeyframe == 0) {
       w.times.push_back(t);
@@ -187,8 +188,8 @@ TEST(VisualInertialAlignment, NoisyWindowsStayWithinBounds) {
     std::mt19937 rng(100 + seed);
     std::normal_distribution<double> n01(0, 1);
     for (std::size_t k = 1; k < T_l_C.size(); ++k) {
-      T_l_C[k].q = so3_boxplus(T_l_C[k].q, 0.002 * Vec3(n01(rng), n01(rng), n01(rng)));
-      T_l_C[k].t += 0.005 * Vec3(n01(rng), n01(rng), n01(rng));
+      T_l_C[k].q = so3_boxplus(T_l_C[k].q, 0.002 * draw_vector<3>([&] { return n01(rng); }));
+      T_l_C[k].t += 0.005 * draw_vector<3>([&] { return n01(rng); });
     }
     const auto a = align_visual_inertial(w.times, T_l_C, w.T_B_C, preintegrate(w.imu, w.times));
     ASSERT_TRUE(a.success) << "seed " << seed << ": " << a.failure;

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "test_support.hpp"
 
 namespace navaid::estimation {
@@ -45,7 +46,10 @@ Scene make_scene(const SceneSpec& s) {
     const Quat q = so3_exp(Vec3(0.02 * std::sin(0.7 * a), 0.03 * a, 0.01 * std::cos(0.5 * a)));
     sc.T_W_C.emplace_back(q, Vec3(s.step_m * a, 0.01 * std::sin(a), 0.3 * s.step_m * a));
   }
-  for (int i = 0; i < s.landmarks; ++i) sc.P_W[static_cast<std::uint64_t>(100 + 3 * i)] = Vec3(ux(rng), uy(rng), uz(rng));
+  for (int i = 0; i < s.landmarks; ++i) {
+    const double z = uz(rng), y = uy(rng);  // z, y, x: the order of record (random_draws.hpp)
+    sc.P_W[static_cast<std::uint64_t>(100 + 3 * i)] = Vec3(ux(rng), y, z);
+  }
   for (std::size_t k = 0; k < s.keyframes; ++k) {
     SfmKeyframe kf;
     for (const auto& [id, P] : sc.P_W) {
@@ -55,10 +59,10 @@ Scene make_scene(const SceneSpec& s) {
       o.track_id = id;
       o.m = X.head<2>() / X.z();
       if (std::abs(o.m.x()) > 0.7 || std::abs(o.m.y()) > 0.55) continue;
-      o.m += Vec2(n01(rng), n01(rng)) * (s.pixel_sigma / kFocal);
+      o.m += draw_vector<2>([&] { return n01(rng); }) * (s.pixel_sigma / kFocal);
       if (X.z() < s.depth_max_m && u01(rng) < s.depth_fraction)
         o.depth_m = 1.0 / (1.0 / X.z() + s.inverse_depth_sigma * n01(rng));
-      if (u01(rng) < s.outlier_fraction) o.m = Vec2(um(rng), um(rng));
+      if (u01(rng) < s.outlier_fraction) o.m = draw_vector<2>([&] { return um(rng); });
       kf.observations.push_back(o);
     }
     sc.keyframes.push_back(kf);

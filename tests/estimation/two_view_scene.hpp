@@ -25,8 +25,11 @@ struct TwoViews {
 inline TwoViews two_views(std::mt19937_64& rng) {
   for (;;) {
     const SE3 T_W_Ba = random_pose(rng);
-    const SE3 T_B_C(random_rotation(rng), random_vector(rng, 0.1));
-    const SE3 T_Ca_Ct(random_rotation(rng, 0.3), random_vector(rng, 0.4));
+    // Drawn last argument first: the order of record (random_draws.hpp).
+    const Vec3 t_B_C = random_vector(rng, 0.1);
+    const SE3 T_B_C(random_rotation(rng), t_B_C);
+    const Vec3 t_Ca_Ct = random_vector(rng, 0.4);
+    const SE3 T_Ca_Ct(random_rotation(rng, 0.3), t_Ca_Ct);
     const SE3 T_W_Bt = T_W_Ba * T_B_C * T_Ca_Ct * T_B_C.inverse();
     std::uniform_real_distribution<double> depth(1.0, 6.0), xy(-0.4, 0.4);
     const double z = depth(rng);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "navaid/core/random_draws.hpp"
 #include "navaid/experiments/monte_carlo_nees.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/io/navaid_recording.hpp"
@@ -43,8 +44,11 @@ void write_run(const fs::path& folder, const fs::path& recording, const std::vec
   csv << kHeader;
   for (std::size_t k = 0; k < gt.size(); ++k) {
     const double f = k == 0 ? 0.0 : 1.0;
-    const navaid::SE3 e(navaid::quat_from_rpy(f * sr * n01(rng), f * sr * n01(rng), f * sr * n01(rng)),
-                        navaid::Vec3(f * sp * n01(rng), f * sp * n01(rng), f * sp * n01(rng)));
+    // Drawn last argument first, each vector last coefficient first: the order of record
+    // (random_draws.hpp).
+    const navaid::Vec3 dp = navaid::draw_vector<3>([&] { return n01(rng); }) * (f * sp);
+    const navaid::Vec3 rpy = navaid::draw_vector<3>([&] { return n01(rng); }) * (f * sr);
+    const navaid::SE3 e(navaid::quat_from_rpy(rpy.x(), rpy.y(), rpy.z()), dp);
     if (k == missing) continue;
     const navaid::SE3 T(gt[k].T_W_B.q * e.q, gt[k].T_W_B.t + e.t);
     csv << gt[k].t << ',' << T.t.x() << ',' << T.t.y() << ',' << T.t.z() << ',' << T.q.w() << ',' << T.q.x() << ','

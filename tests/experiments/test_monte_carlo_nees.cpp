@@ -8,6 +8,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/experiments/monte_carlo_nees.hpp"
 #include "navaid/experiments/nees.hpp"
 #include "navaid/experiments/run_folder.hpp"
@@ -33,7 +34,7 @@ using Matrix = std::vector<std::vector<double>>;
 Matrix gaussian_nees(std::size_t runs, std::size_t epochs, double reported, unsigned seed, bool frozen = false) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n01;
-  const auto draw = [&] { return Vec3(n01(rng), n01(rng), n01(rng)); };
+  const auto draw = [&] { return navaid::draw_vector<3>([&] { return n01(rng); }); };
   Matrix out(runs);
   for (auto& run : out) {
     double value = 0.0;

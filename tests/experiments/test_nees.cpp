@@ -6,6 +6,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/experiments/nees.hpp"
 #include "test_support.hpp"
 
@@ -36,8 +37,8 @@ Samples draw(std::size_t n, double reported, unsigned seed) {
     e.T_W_B = SE3(navaid::quat_from_rpy(0.1 * i, 0.2, -0.3), Vec3(i, 2.0, 0.5));
     e.position_covariance = reported * kCovariance;
     e.rotation_covariance = reported * kCovariance * 0.01;
-    const Vec3 dp = L * Vec3(n01(rng), n01(rng), n01(rng));
-    const Vec3 dtheta = 0.1 * (L * Vec3(n01(rng), n01(rng), n01(rng)));
+    const Vec3 dp = L * navaid::draw_vector<3>([&] { return n01(rng); });
+    const Vec3 dtheta = 0.1 * (L * navaid::draw_vector<3>([&] { return n01(rng); }));
     s.truth.push_back(SE3(navaid::so3_boxplus(e.T_W_B.q, dtheta), e.T_W_B.t + dp));
     s.estimates.push_back(e);
   }

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 
 namespace navaid::experiments {
 namespace {
@@ -48,8 +49,8 @@ std::vector<StateEstimate> estimates_in_other_world(const std::vector<io::Stampe
     const SE3 truth = T_est_gt * gt[k].T_W_B;
     // The first real estimate is exact: it defines the frame.
     const double scale = k <= 3 ? 0.0 : error_scale;
-    const Vec3 dp = scale * Lp * Vec3(n(rng), n(rng), n(rng));
-    const Vec3 dth = scale * Lr * Vec3(n(rng), n(rng), n(rng));
+    const Vec3 dp = scale * Lp * draw_vector<3>([&] { return n(rng); });
+    const Vec3 dth = scale * Lr * draw_vector<3>([&] { return n(rng); });
     // truth = estimate (+) error, in the covariance's parametrization.
     s.T_W_B = SE3(Quat(truth.q * so3_exp(-dth)), Vec3(truth.t - dp));
     s.covariance.block<3, 3>(0, 0) = P_rot;

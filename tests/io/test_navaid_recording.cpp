@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/nmea.hpp"
@@ -50,7 +51,7 @@ cv::Mat random_mat(int type, int seed, int max_value) {
 Recording make_recording(const fs::path& src) {
   std::mt19937 rng(42);
   std::normal_distribution<double> normal;
-  const auto vec = [&](double scale) { return Vec3(scale * normal(rng), scale * normal(rng), scale * normal(rng)); };
+  const auto vec = [&](double scale) -> Vec3 { return draw_vector<3>([&] { return normal(rng); }) * scale; };
   Recording r;
 
   CameraCalibration cam0;
@@ -125,7 +126,9 @@ Recording make_recording(const fs::path& src) {
   for (int i = 0; i < 10; ++i) {
     GroundTruthState g;
     g.t = kT0 + i * 10'000'000;
-    g.T_W_B = SE3(rotation(normal(rng), normal(rng), normal(rng), normal(rng)), vec(3));
+    const Vec3 t_W_B = vec(3);  // drawn last argument first: the order of record (random_draws.hpp)
+    const Eigen::Vector4d axis_angle = draw_vector<4>([&] { return normal(rng); });
+    g.T_W_B = SE3(rotation(axis_angle[0], axis_angle[1], axis_angle[2], axis_angle[3]), t_W_B);
     if (i % 3 != 0) g.v_W = vec(1);
     if (i % 2 == 0) g.b_g = vec(1e-3);
     if (i % 2 == 0) g.b_a = vec(1e-2);
@@ -185,7 +188,8 @@ Recording make_recording(const fs::path& src) {
       for (std::uint64_t id = 5 + k; !empty && id < 40; id += 3) {
         FeatureObservation o;
         o.track_id = id * 1'000'000'007ull;
-        o.uv = Eigen::Vector2d(pixel(rng), pixel(rng) * 0.75);
+        const double v = pixel(rng) * 0.75;  // v before u: the order of record (random_draws.hpp)
+        o.uv = Eigen::Vector2d(pixel(rng), v);
         if (id % 2 == 0) o.depth_m = 0.3 + 7 * std::abs(normal(rng));
         ff.features.push_back(o);
       }

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 #include "navaid/mapping/distance_transform.hpp"
 #include "navaid/mapping/esdf_2d.hpp"
 #include "navaid/mapping/esdf_3d.hpp"
@@ -117,7 +118,7 @@ TEST(Esdf2d, GradientMatchesFiniteDifferencesAndPointsAwayFromTheObstacle) {
   std::uniform_real_distribution<double> coord(0.5, 5.6);
   int checked = 0;
   while (checked < 200) {
-    const Vec2 p(coord(rng), coord(rng));
+    const Vec2 p = draw_vector<2>([&] { return coord(rng); });
     if ((p - obstacle).norm() < 0.8) continue;  // away from the cone's tip
     ++checked;
     const Vec2 grad = *esdf.gradient(p);

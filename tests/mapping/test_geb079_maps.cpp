@@ -209,7 +209,8 @@ TEST_F(Geb079Maps, Esdf3dMatchesBruteForceAndSeesFloorAndWalls) {
   std::uniform_real_distribution<double> ux(lo.x(), hi.x()), uy(lo.y(), hi.y()), uz(lo.z(), hi.z());
   double worst = 0.0;
   for (int i = 0; i < 300; ++i) {
-    const Vec3 p(ux(rng), uy(rng), uz(rng));
+    const double z = uz(rng), y = uy(rng);  // z, y, x: the order of record (random_draws.hpp)
+    const Vec3 p(ux(rng), y, z);
     const octomap::point3d c = tree_->keyToCoord(tree_->coordToKey(p.x(), p.y(), p.z()));
     const Vec3 centre(c.x(), c.y(), c.z());
     double best = esdf.max_distance_m();

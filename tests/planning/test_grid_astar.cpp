@@ -77,10 +77,14 @@ TEST(GridAStar, OptimalAgainstDijkstraOnRandomMaps) {
     std::mt19937 rng(seed * 7919U);
     std::uniform_int_distribution<int> ux(0, 39);
     std::uniform_int_distribution<int> uy(0, 29);
-    Cell2 s(ux(rng), uy(rng));
-    Cell2 t(ux(rng), uy(rng));
-    while (m.is_obstacle(s)) s = Cell2(ux(rng), uy(rng));
-    while (m.is_obstacle(t)) t = Cell2(ux(rng), uy(rng));
+    const auto random_cell = [&] {
+      const int y = uy(rng);  // y before x: the order of record (random_draws.hpp)
+      return Cell2(ux(rng), y);
+    };
+    Cell2 s = random_cell();
+    Cell2 t = random_cell();
+    while (m.is_obstacle(s)) s = random_cell();
+    while (m.is_obstacle(t)) t = random_cell();
     GridAStarConfig config;
     config.cost.cost_weight = seed % 2 == 0 ? 1.0 : 3.0;
     const Plan plan = GridAStarPlanner(config).plan(

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/random_draws.hpp"
 
 namespace navaid::simulation {
 namespace {
@@ -31,7 +32,8 @@ TEST(MagnetometerModel, NoiselessNormIsPreserved) {
   const double norm = m.config().field_enu_t.norm();
   for (int k = 0; k < 100; ++k) {
     const SE3 T_ENU_W = yaw_pose(angle(rng), Vec3(1.0, 2.0, 3.0));
-    const SE3 T_W_B(quat_from_rpy(0.5 * angle(rng), 0.5 * angle(rng), angle(rng)), Vec3(4.0, 5.0, 6.0));
+    const Vec3 rpy = draw_vector<3>([&] { return angle(rng); });
+    const SE3 T_W_B(quat_from_rpy(0.5 * rpy.x(), 0.5 * rpy.y(), rpy.z()), Vec3(4.0, 5.0, 6.0));
     const MagSample s = m.measure(k, T_ENU_W, T_W_B);
     EXPECT_EQ(s.t, k);
     EXPECT_NEAR(s.field.norm(), norm, 1e-15);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "navaid/core/random_draws.hpp"
+
 namespace navaid::simulation {
 namespace {
 
@@ -12,7 +14,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 Vec3 random_unit(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
+  return draw_vector<3>([&] { return n(rng); }).normalized();
 }
 
 TEST(RayCaster, EmptyWorldNeverHits) {
@@ -27,7 +29,8 @@ TEST(RayCaster, GroundPlaneHitIsExactInDouble) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 200; ++i) {
-    const Vec3 o(10 * u(rng), 10 * u(rng), 0.5 + std::abs(u(rng)) * 3.0);
+    const double z = 0.5 + std::abs(u(rng)) * 3.0, y = 10 * u(rng);  // z, y, x: the order of record (random_draws.hpp)
+    const Vec3 o(10 * u(rng), y, z);
     Vec3 d = random_unit(rng);
     d.z() = -std::abs(d.z()) - 0.05;
     d.normalize();

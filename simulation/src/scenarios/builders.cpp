@@ -72,9 +72,12 @@ void SceneBuilder::tree(const Vec2& xy, double z0, double crown_bottom_z, double
   const double crown_rz = 0.75 * crown_radius;
   const double crown_center = crown_bottom_z + crown_rz;
   cylinder(xy, z0, trunk_r, crown_center - z0, C::kTreeTrunk, 0.08);
-  world_.add(Ellipsoid{SE3(yaw_quat(rng_.uniform(0.0, kPi)), Vec3(xy.x(), xy.y(), crown_center)),
+  // The crown's surface (its albedo draw) before its yaw: the order of record (random_draws.hpp).
+  const Surface crown_surface = surface(C::kVegetation, 0.15);
+  const double crown_yaw = rng_.uniform(0.0, kPi);
+  world_.add(Ellipsoid{SE3(yaw_quat(crown_yaw), Vec3(xy.x(), xy.y(), crown_center)),
                        Vec3(crown_radius, 0.9 * crown_radius, crown_rz)},
-             surface(C::kVegetation, 0.15));
+             crown_surface);
   for (const Vec2& reach : branch_reach) {
     // A branch is a thin ellipsoid from the trunk outwards, drooping slightly at its tip.
     const double len = reach.norm();
