@@ -115,7 +115,10 @@ bool covers_area(const Cloud& cloud, const PlaneFit& fit) {
   constexpr std::size_t kMinInteriorCells = 10;
   const Eigen::Vector3d& n = fit.plane.normal_C;
   const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1);
-  auto key = [](long long u, long long v) { return (u << 32) ^ (v & 0xffffffffLL); };
+  // Shifted as unsigned: shifting a negative cell index is undefined (found by UBSan).
+  auto key = [](long long u, long long v) {
+    return static_cast<long long>((static_cast<unsigned long long>(u) << 32) ^ (static_cast<unsigned long long>(v) & 0xffffffffULL));
+  };
   std::unordered_set<long long> cells;
   for (int i : fit.inliers->indices) {
     const Eigen::Vector3d p = cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>();
