@@ -90,7 +90,11 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
       const std::uint64_t seed = spec.first_seed + i;
       const fs::path dir = out / "trials" / fmt::format("seed-{}", seed);
       try {
+        // Copying the configuration reads base's yaml-cpp nodes, which are not safe to read from two
+        // threads at once (a crash one run in ~7, caught under gdb): one copy at a time.
+        std::unique_lock<std::mutex> copying(m);
         TrialSpec t{spec.scenario, spec.layouts == "random" ? seed : 0, seed, base, true};
+        copying.unlock();
         TrialResult r = run_trial(t, dir);
         const bool notable = !r.success || !r.contacts.empty() || !r.into_obstacle.empty();
         if (spec.keep == "none" || (spec.keep == "failures" && !notable)) fs::remove_all(dir);
