@@ -186,7 +186,7 @@ class TopicChooser {
  private:
   void apply_preset(const std::string& preset) {
     for (const auto& [role, candidates] : ros_bag_preset(preset).roles) {
-      std::string& slot = member(role);
+      std::string& slot = ros_bag_topic(t_, role);
       if (!slot.empty()) continue;
       for (const auto& c : candidates)
         if (bag_.has(c)) {
@@ -195,18 +195,6 @@ class TopicChooser {
         }
     }
     if (!t_.imu.empty()) t_.gyro.clear(), t_.accel.clear();  // a united IMU wins over two topics
-  }
-
-  std::string& member(const std::string& role) {
-    if (role == "imu") return t_.imu;
-    if (role == "gyro") return t_.gyro;
-    if (role == "accel") return t_.accel;
-    if (role == "image") return t_.image;
-    if (role == "depth") return t_.depth;
-    if (role == "camera_info") return t_.camera_info;
-    if (role == "gps") return t_.gps;
-    if (role == "mag") return t_.mag;
-    return t_.groundtruth;
   }
 
   void require_type(const std::string& role, const std::string& topic, const std::vector<std::string>& types) {

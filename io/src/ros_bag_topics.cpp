@@ -75,11 +75,16 @@ std::vector<std::string_view> ros_bag_roles() {
   return roles;
 }
 
-void set_ros_bag_topic(RosBagTopics& topics, std::string_view role, const std::string& topic) {
+std::string& ros_bag_topic(RosBagTopics& topics, std::string_view role) {
   const auto member = find_role(role);
   if (!member) throw ConfigError("topics", std::string(role), "unknown role (roles: " + role_list() + ")");
+  return topics.*(*member);
+}
+
+void set_ros_bag_topic(RosBagTopics& topics, std::string_view role, const std::string& topic) {
+  std::string& slot = ros_bag_topic(topics, role);
   if (topic.empty()) throw ConfigError("topics", std::string(role), "the topic name is empty");
-  topics.*(*member) = topic;
+  slot = topic;
 }
 
 std::vector<std::string> ros_bag_preset_names() {

@@ -31,6 +31,8 @@ struct RosBagTopics {
 
 /// The roles in the order above, with their names as accepted by set_ros_bag_topic.
 std::vector<std::string_view> ros_bag_roles();
+/// The topic of a role by name ("imu", "image", ...); ConfigError for an unknown role.
+std::string& ros_bag_topic(RosBagTopics& topics, std::string_view role);
 /// Sets one role by name ("imu", "image", ...); UsageError-like ConfigError for an unknown role.
 void set_ros_bag_topic(RosBagTopics& topics, std::string_view role, const std::string& topic);
 /// A driver's topic names and what its datasheet says of the depth camera.
