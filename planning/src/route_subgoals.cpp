@@ -161,15 +161,6 @@ Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, double yaw, const Vec2& t) 
 
 }  // namespace
 
-Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const estimation::GpsRegistration& registration) {
-  if (!registration.registered()) {
-    throw Error(std::string("subgoal_in_world: the GPS-map registration is not ready (") +
-                estimation::to_string(registration.status) + ")");
-  }
-  return subgoal_in_world(subgoal_ENU, registration.alignment[0],
-                          Vec2(registration.alignment[1], registration.alignment[2]));
-}
-
 Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const SE3& T_ENU_W) {
   return subgoal_in_world(subgoal_ENU, yaw_of(T_ENU_W.q), T_ENU_W.t.head<2>());
 }

@@ -66,22 +66,20 @@ TEST(RouteSubgoal, DestinationInsideTheWindowAndUserOffTheRoute) {
 }
 
 TEST(RouteSubgoal, IntoTheEstimatorWorldFrame) {
-  navaid::estimation::GpsRegistration reg;
+  // A StateEstimate's T_ENU_W: W's x axis points north, W's origin 5 m east.
+  const navaid::SE3 T_ENU_W(navaid::Quat(Eigen::AngleAxisd(kPi / 2, navaid::Vec3::UnitZ())), navaid::Vec3(5.0, 0.0, 0.0));
   Subgoal enu;
   enu.goal_W = Vec2(5, 10);
   enu.direction_rad = kPi / 2;
   enu.from_route = true;
-  EXPECT_THROW(subgoal_in_world(enu, reg), navaid::Error);  // not registered yet
-  reg.status = navaid::estimation::GpsRegistrationStatus::kRegistered;
-  reg.alignment << kPi / 2, 5.0, 0.0, 0.0;  // W's x axis points north, W's origin 5 m east
-  const Subgoal w = subgoal_in_world(enu, reg);
+  const Subgoal w = subgoal_in_world(enu, T_ENU_W);
   ASSERT_TRUE(w.goal_W);
   EXPECT_NEAR(w.goal_W->x(), 10.0, 1e-9);
   EXPECT_NEAR(w.goal_W->y(), 0.0, 1e-9);
   EXPECT_NEAR(*w.direction_rad, 0.0, 1e-9);  // north in ENU = +x in W
   EXPECT_TRUE(w.from_route);
-  // Consistent with the registration's own transform.
-  const navaid::Vec3 back = reg.T_ENU_W() * navaid::Vec3(w.goal_W->x(), w.goal_W->y(), 0.0);
+  // Consistent with the transform itself.
+  const navaid::Vec3 back = T_ENU_W * navaid::Vec3(w.goal_W->x(), w.goal_W->y(), 0.0);
   EXPECT_NEAR(back.x(), 5.0, 1e-9);
   EXPECT_NEAR(back.y(), 10.0, 1e-9);
 }

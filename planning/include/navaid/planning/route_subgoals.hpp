@@ -11,7 +11,6 @@
 
 #include "navaid/core/calibration.hpp"
 #include "navaid/core/config.hpp"
-#include "navaid/estimation/gps_registration.hpp"
 #include "navaid/planning/foot_router.hpp"
 #include "navaid/planning/path_guidance.hpp"
 
@@ -58,11 +57,8 @@ struct RouteSubgoal {
 /// subgoal is the destination itself (goal_W and its heading). Throws Error on no sub-routes.
 RouteSubgoal route_subgoal(const std::vector<SubRoute>& subroutes, const Vec2& user_ENU, double window_m);
 
-/// Maps an ENU subgoal into W through the GPS-map registration T_ENU_W = (Rz(yaw), t):
-/// goal_W = Rz(-yaw) (goal_ENU - t), heading_W = heading_ENU - yaw. Throws Error when the
-/// registration is not registered().
-Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const estimation::GpsRegistration& registration);
-/// The same through a StateEstimate's T_ENU_W (4-DOF: its yaw and translation).
+/// Maps an ENU subgoal into W through the GPS-map registration T_ENU_W (a StateEstimate's, 4-DOF:
+/// its yaw and translation): goal_W = Rz(-yaw) (goal_ENU - t), heading_W = heading_ENU - yaw.
 Subgoal subgoal_in_world(const Subgoal& subgoal_ENU, const SE3& T_ENU_W);
 
 }  // namespace navaid::planning
