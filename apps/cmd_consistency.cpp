@@ -1,5 +1,5 @@
 // navaid consistency: Monte-Carlo NEES of N runs of one recording with different noise seeds
-// (experiments/monte_carlo_nees.hpp): per-epoch ANEES of position and orientation with the
+// (evaluation/monte_carlo_nees.hpp): per-epoch ANEES of position and orientation with the
 // chi-square bounds, the time average with its bounds; consistency.csv / .json / .md and a figure
 // drawn by experiments/figures/plot_consistency.py. Definitions in docs/evaluation.md.
 #include <fmt/format.h>
@@ -14,7 +14,7 @@
 
 #include "commands.hpp"
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/monte_carlo_nees.hpp"
+#include "navaid/evaluation/monte_carlo_nees.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/experiments/figure_script.hpp"
@@ -25,6 +25,7 @@ using experiments::run_figure_script;
 
 namespace fs = std::filesystem;
 namespace ex = navaid::experiments;
+namespace ev = navaid::evaluation;
 namespace {
 
 struct ConsistencyArgs {
@@ -46,11 +47,11 @@ std::vector<io::StampedPose> recording_groundtruth(const fs::path& recording) {
   return poses;
 }
 
-nlohmann::ordered_json bounds_json(const ex::NeesBounds& b) {
+nlohmann::ordered_json bounds_json(const ev::NeesBounds& b) {
   return {{"dof", b.dof}, {"lower", b.lower}, {"upper", b.upper}};
 }
 
-nlohmann::ordered_json statistics_json(const ex::AneesStatistics& s) {
+nlohmann::ordered_json statistics_json(const ev::AneesStatistics& s) {
   return {{"dof", s.dof},
           {"epoch_bounds", bounds_json(s.epoch_bounds)},
           {"fraction_of_epochs_inside", s.fraction_inside},
@@ -66,7 +67,7 @@ nlohmann::ordered_json statistics_json(const ex::AneesStatistics& s) {
           {"run_averages", s.run_averages}};
 }
 
-std::string markdown(const ConsistencyArgs& a, const ex::MonteCarloNees& m) {
+std::string markdown(const ConsistencyArgs& a, const ev::MonteCarloNees& m) {
   const int pct = static_cast<int>(std::lround(100 * a.confidence));
   std::string md = fmt::format(
       "# Monte-Carlo NEES consistency\n\n{} runs, {} shared epochs ({} to {} s, the first {} s of the shared span "
@@ -119,15 +120,15 @@ void run_consistency(const ConsistencyArgs& a) {
   if (runs.size() < 2) throw UsageError(fmt::format("--runs needs at least 2 run folders, got {}", runs.size()));
   // Runs of one simulated recording usually share its ground truth: read each recording once.
   std::map<fs::path, std::vector<io::StampedPose>> groundtruth;
-  std::vector<ex::NeesSeries> series;
+  std::vector<ev::NeesSeries> series;
   for (const fs::path& run : runs) {
     const fs::path recording = ex::run_recording(run);
     auto it = groundtruth.find(recording);
     if (it == groundtruth.end()) it = groundtruth.emplace(recording, recording_groundtruth(recording)).first;
-    series.push_back(ex::first_state_nees_series(run.string(), ex::read_estimates_csv(run / "estimates.csv"), it->second));
+    series.push_back(ev::first_state_nees_series(run.string(), ex::read_estimates_csv(run / "estimates.csv"), it->second));
     spdlog::info("{}: {} epochs", run.string(), series.back().t.size());
   }
-  const ex::MonteCarloNees m = ex::monte_carlo_nees(series, a.confidence, seconds_to_ns(a.skip_s));
+  const ev::MonteCarloNees m = ev::monte_carlo_nees(series, a.confidence, seconds_to_ns(a.skip_s));
 
   fs::create_directories(a.out);
   const fs::path csv_file = a.out / "consistency.csv", json_file = a.out / "consistency.json",

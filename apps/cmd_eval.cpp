@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/trajectory_evaluation.hpp"
+#include "navaid/evaluation/trajectory_evaluation.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/experiments/figure_script.hpp"
@@ -21,6 +21,7 @@ using experiments::run_figure_script;
 
 namespace fs = std::filesystem;
 namespace ex = navaid::experiments;
+namespace ev = navaid::evaluation;
 namespace {
 
 struct EvalArgs {
@@ -63,12 +64,12 @@ std::vector<io::StampedPose> read_groundtruth(const fs::path& path) {
   return poses;
 }
 
-nlohmann::ordered_json stats_json(const ex::ErrorStatistics& s) {
+nlohmann::ordered_json stats_json(const ev::ErrorStatistics& s) {
   return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"std", s.std}, {"min", s.min}, {"max", s.max},
           {"count", s.count}};
 }
 
-nlohmann::ordered_json evaluation_json(const EvalArgs& a, const ex::TrajectoryEvaluation& e) {
+nlohmann::ordered_json evaluation_json(const EvalArgs& a, const ev::TrajectoryEvaluation& e) {
   nlohmann::ordered_json j;
   j["estimate"] = a.est.string();
   j["groundtruth"] = a.gt.string();
@@ -80,7 +81,7 @@ nlohmann::ordered_json evaluation_json(const EvalArgs& a, const ex::TrajectoryEv
   const auto& T = e.ate.transform;
   nlohmann::ordered_json rotation = nlohmann::ordered_json::array();
   for (int r = 0; r < 3; ++r) rotation.push_back({T.R(r, 0), T.R(r, 1), T.R(r, 2)});
-  j["alignment"] = {{"mode", std::string(ex::to_string(e.ate.alignment))},
+  j["alignment"] = {{"mode", std::string(ev::to_string(e.ate.alignment))},
                     {"frames", e.ate.align_frames},
                     {"scale", T.scale},
                     {"rotation", rotation},  // gt ~ scale * rotation * est + translation
@@ -100,7 +101,7 @@ nlohmann::ordered_json evaluation_json(const EvalArgs& a, const ex::TrajectoryEv
   if (e.evo_rpe) {
     const auto& r = *e.evo_rpe;
     j["rpe_evo"] = {{"delta", r.options.delta},
-                    {"delta_unit", std::string(ex::to_string(r.options.unit))},
+                    {"delta_unit", std::string(ev::to_string(r.options.unit))},
                     {"all_pairs", r.options.all_pairs},
                     {"pairs_from_reference", r.options.pairs_from_reference},
                     {"rel_delta_tol", r.options.rel_delta_tol},
@@ -111,7 +112,7 @@ nlohmann::ordered_json evaluation_json(const EvalArgs& a, const ex::TrajectoryEv
   return j;
 }
 
-void write_per_pose(const fs::path& file, const ex::TrajectoryEvaluation& e) {
+void write_per_pose(const fs::path& file, const ev::TrajectoryEvaluation& e) {
   std::ofstream out(file);
   if (!out) throw IoError(file.string(), "cannot write");
   out << "t,gt_x,gt_y,gt_z,est_x,est_y,est_z,position_error_m,rotation_error_deg\n";
@@ -126,8 +127,8 @@ void write_per_pose(const fs::path& file, const ex::TrajectoryEvaluation& e) {
 }
 
 void run_eval(const EvalArgs& a) {
-  ex::EvaluationOptions options;
-  options.ate.alignment = *ex::alignment_mode_from_string(resolved_alignment(a));  // CLI11 has checked the name
+  ev::EvaluationOptions options;
+  options.ate.alignment = *ev::alignment_mode_from_string(resolved_alignment(a));  // CLI11 has checked the name
   options.ate.align_frames = a.align_frames;
   if (!(a.tolerance_s > 0.0) || !std::isfinite(a.tolerance_s))
     throw UsageError(fmt::format("--tolerance must be a positive number of seconds, got {}", a.tolerance_s));
@@ -140,9 +141,9 @@ void run_eval(const EvalArgs& a) {
     options.evo_max_diff = seconds_to_ns(a.t_max_diff_s);
   }
   if (a.delta != 0.0) {
-    ex::EvoRpeOptions rpe;
+    ev::EvoRpeOptions rpe;
     rpe.delta = a.delta;
-    rpe.unit = *ex::rpe_delta_unit_from_string(a.delta_unit);  // CLI11 has checked the letter
+    rpe.unit = *ev::rpe_delta_unit_from_string(a.delta_unit);  // CLI11 has checked the letter
     rpe.all_pairs = a.all_pairs;
     rpe.pairs_from_reference = a.pairs_from_reference;
     rpe.rel_delta_tol = a.delta_tol;
@@ -153,12 +154,12 @@ void run_eval(const EvalArgs& a) {
 
   const auto est = io::read_tum_trajectory(a.est);
   const auto gt = read_groundtruth(a.gt);
-  const ex::TrajectoryEvaluation e = ex::evaluate_trajectory(est, gt, options);
+  const ev::TrajectoryEvaluation e = ev::evaluate_trajectory(est, gt, options);
 
   std::cout << fmt::format("matched poses: {} of {} estimated ({} ground-truth poses, {} association, tolerance {} s)\n",
                            e.pairs.size(), e.est_poses, e.gt_poses, e.association,
                            options.evo_max_diff ? a.t_max_diff_s : a.tolerance_s);
-  std::cout << fmt::format("alignment: {} on {} poses, scale {:.6f}\n", ex::to_string(e.ate.alignment),
+  std::cout << fmt::format("alignment: {} on {} poses, scale {:.6f}\n", ev::to_string(e.ate.alignment),
                            e.ate.align_frames, e.ate.transform.scale);
   std::cout << fmt::format("ATE RMSE: {:.6f} m (mean {:.4f}, median {:.4f}, max {:.4f} m; rotation RMSE {:.3f} deg)\n",
                            e.ate.position.rmse, e.ate.position.mean, e.ate.position.median, e.ate.position.max,
@@ -175,7 +176,7 @@ void run_eval(const EvalArgs& a) {
     const auto& r = *e.evo_rpe;
     std::cout << fmt::format("RPE (evo) delta {} {}{}: translation RMSE {:.6f} m (mean {:.4f}, max {:.4f} m), rotation "
                              "RMSE {:.3f} deg, {} pairs\n",
-                             r.options.delta, ex::to_string(r.options.unit), r.options.all_pairs ? ", all pairs" : "",
+                             r.options.delta, ev::to_string(r.options.unit), r.options.all_pairs ? ", all pairs" : "",
                              r.translation.rmse, r.translation.mean, r.translation.max, r.rotation_deg.rmse,
                              r.pairs.size());
   }
@@ -193,7 +194,7 @@ void run_eval(const EvalArgs& a) {
   if (!a.no_plot) {
     run_figure_script("plot_eval.py", {csv_file.string(), "--out", png_file.string(), "--title",
                                        fmt::format("{}: ATE RMSE {:.4f} m ({})", a.est.filename().string(),
-                                                   e.ate.position.rmse, ex::to_string(e.ate.alignment))});
+                                                   e.ate.position.rmse, ev::to_string(e.ate.alignment))});
     std::cout << ", " << png_file.string();
   }
   std::cout << "\n";

@@ -20,7 +20,7 @@ struct RunArgs {
   std::string device;
   std::vector<std::string> overrides;
   bool realtime = false;
-  experiments::RealtimeOptions realtime_options;
+  runtime::RealtimeOptions realtime_options;
   std::size_t device_queue = 8;
   bool no_plot = false;
   BagOptions bag;
@@ -31,7 +31,7 @@ void run(const RunArgs& a) {
   if (a.out.empty()) throw UsageError("--out is required");
   if (!a.device.empty() && !a.config_file.empty())
     throw UsageError("give --device NAME (a preset) or --config FILE, not both; change a preset's keys with --set");
-  if (a.realtime) experiments::validate(a.realtime_options);
+  if (a.realtime) runtime::validate(a.realtime_options);
   if (a.device_queue == 0) throw UsageError("--device-queue must be at least 1");
   experiments::RecordingRunOptions o;
   o.recording = a.recording;

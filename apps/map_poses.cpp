@@ -6,7 +6,7 @@
 #include <string>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/evaluation/start_alignment.hpp"
 
 namespace navaid::cli {
 
@@ -53,7 +53,7 @@ FramePoses poses_from_groundtruth(const io::Recording& rec, const std::vector<Rg
     if (t < gt.front().t || t > gt.back().t) continue;
     StateEstimate e;
     e.t = frames[i].t;
-    e.T_W_B = experiments::interpolate_pose(gt, t);
+    e.T_W_B = evaluation::interpolate_pose(gt, t);
     e.mode = EstimatorMode::kRgbdVio;
     e.covariance = Mat15::Identity() * 1e-6;
     e.covariance.block<3, 3>(0, 0) = Mat3::Identity() * sigma_rot * sigma_rot;

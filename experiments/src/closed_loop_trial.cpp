@@ -14,6 +14,7 @@
 #include "navaid/estimation/estimator_config.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
 #include "navaid/estimation/sliding_window_estimator.hpp"
+#include "navaid/runtime/estimator_driver.hpp"
 #include "navaid/experiments/cue_perception.hpp"
 #include "navaid/experiments/device_preset.hpp"
 #include "navaid/experiments/device_run.hpp"
@@ -199,7 +200,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   if (reach_task) simulation::write_scenario_targets(scenario, out / io::kTargetsCsv);
 
   // The device: the estimator on the rig's IMU and feature observations, the full-device pipeline.
-  std::optional<estimation::SlidingWindowEstimator> estimator;
+  std::optional<runtime::EstimatorDriver> estimator;  // the rig's features: no image front end
   std::unique_ptr<DeviceRun> device_run;
   io::Recording recording;
   recording.format = "navaid";
@@ -213,8 +214,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   double trial_clock_s = 0;
   if (device) {
     estimation::read_frontend_config(config);  // a preset's front-end keys: the trial feeds features
-    estimator.emplace(recording.calibration, estimation::read_estimator_config(config), sim.camera.name,
-                      recording.origin);
+    estimator.emplace(estimation::SlidingWindowEstimator(
+        recording.calibration, estimation::read_estimator_config(config), sim.camera.name, recording.origin));
     MapSessionOptions map_options{1.0, 5.0, false, 0};
     read_obstacle_options(config, map_options);
     map_options.network = mapping::read_segmentation_link_config(config);
@@ -526,7 +527,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
                {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index},
                {"gps_fixes", gps_fixes}, {"mag_samples", mag_samples}};
   if (device) {
-    const estimation::EstimatorStatistics& es = estimator->statistics();
+    const estimation::EstimatorStatistics& es = estimator->estimator().statistics();
     j["estimator"] = {{"failures", es.failures}, {"last_failure", es.last_failure}, {"restarts", es.restarts},
                       {"map_frame_resets", es.map_frame_resets}, {"gps_registrations", es.gps_registrations},
                       {"covariance_failures", es.covariance_failures}};

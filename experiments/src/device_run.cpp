@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/bounded_queue.hpp"
-#include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/runtime/bounded_queue.hpp"
+#include "navaid/runtime/estimator_pipeline.hpp"
 #include "navaid/experiments/figure_script.hpp"
 #include "navaid/estimation/state_prediction.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
@@ -350,7 +350,7 @@ struct DeviceRun::Impl {
   estimation::ImuNoise imu_noise;
   std::optional<StateEstimate> last_solved;  // guarded by m
   std::vector<double> prediction_s, map_latency_ms;
-  BoundedQueue<DeviceItem> map_queue, guide_queue;
+  runtime::BoundedQueue<DeviceItem> map_queue, guide_queue;
   std::thread map_thread, guide_thread;
   std::mutex m;  // guards what both threads touch: newest, pending_events, log, first_error
   std::shared_ptr<const MapSnapshot> newest;
@@ -402,10 +402,10 @@ nlohmann::ordered_json DeviceRun::finish() {
   for (std::size_t i = 0; i < interaction::kCueOutcomeCount; ++i)
     counts[std::string(interaction::to_string(static_cast<interaction::CueOutcome>(i)))] = d.session->scheduler().counts()[i];
   nlohmann::ordered_json j;
-  j["stages"] = {{"mapping", stage_distribution(d.mapping_ms)},
-                 {"planning", stage_distribution(d.planning_ms)},
-                 {"interaction", stage_distribution(d.interaction_ms)}};
-  j["latency"] = stage_distribution(d.latency_ms);
+  j["stages"] = {{"mapping", runtime::stage_distribution(d.mapping_ms)},
+                 {"planning", runtime::stage_distribution(d.planning_ms)},
+                 {"interaction", runtime::stage_distribution(d.interaction_ms)}};
+  j["latency"] = runtime::stage_distribution(d.latency_ms);
   j["latency"]["cues"] = d.latency_ms.size();
   j["latency"]["note"] = "wall clock from a sensor frame's arrival to the cue it caused reaching the actuator or speaker";
   j["latency"]["pose"] = d.options.predict_at_arrival ? "the newest solved estimate carried through the IMU to the frame"
@@ -413,10 +413,10 @@ nlohmann::ordered_json DeviceRun::finish() {
   if (d.options.predict_at_arrival) {
     std::vector<double> ms;
     for (double v : d.prediction_s) ms.push_back(1e3 * v);
-    j["latency"]["prediction_span_ms"] = stage_distribution(ms);
+    j["latency"]["prediction_span_ms"] = runtime::stage_distribution(ms);
   }
   // When what a frame shows (obstacles) is in the map the planners read.
-  j["map_latency"] = stage_distribution(d.map_latency_ms);
+  j["map_latency"] = runtime::stage_distribution(d.map_latency_ms);
   j["guidance"] = d.stage->summary();
   j["plans"] = {{"made", d.plans}, {"found", d.plans_found}};
   j["cues"] = {{"timeline_entries", d.timeline.entries()}, {"events", events.size()}, {"outcomes", counts},

@@ -7,11 +7,11 @@
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/evaluation/start_alignment.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/mapping/map_png.hpp"
 #include "navaid/simulation/simulation_config.hpp"
-#include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/runtime/estimator_pipeline.hpp"
 
 namespace navaid::experiments {
 
@@ -44,7 +44,7 @@ std::string outcome_name(mapping::FrameOutcome o) {
 }
 
 
-nlohmann::ordered_json quality_json(const experiments::MapQuality& q, const simulation::Scenario& scenario) {
+nlohmann::ordered_json quality_json(const evaluation::MapQuality& q, const simulation::Scenario& scenario) {
   nlohmann::ordered_json j;
   j["occupancy"] = {{"precision", q.precision}, {"recall", q.recall}, {"f1", q.f1}, {"true_positive", q.true_positive},
                     {"false_positive", q.false_positive}, {"false_negative", q.false_negative}};
@@ -117,9 +117,9 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
       scenario_(options.quality ? recording_scenario(recording_dir) : std::nullopt) {
   if (!(options.snapshot_every_s > 0)) throw UsageError("the map snapshot interval must be positive");
   if (scenario_) {
-    quality_ = std::make_unique<experiments::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+    quality_ = std::make_unique<evaluation::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
     if (!options.align_to.empty())
-      quality_global_ = std::make_unique<experiments::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+      quality_global_ = std::make_unique<evaluation::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
   }
   std::filesystem::create_directories(out_);
   timing_.open(out_ / "timing.csv");
@@ -184,7 +184,7 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
                          r.esdf_ms);
   if (r.outcome == mapping::FrameOutcome::kMapped) {
     if (quality_global_ && !aligned_) {
-      quality_global_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
+      quality_global_->set_map_to_truth(evaluation::first_state_transform(estimate, options_.align_to));
       aligned_ = true;
     }
     cloud_ms_.push_back(r.cloud_ms);
@@ -203,7 +203,7 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
       top_view_.add_voxels(mapper_.map().occupied_voxels(), estimate.T_W_B.t.z() + kTopViewAboveBodyM);
       if (quality_) {
         if (!options_.align_to.empty())
-          quality_->set_map_to_truth(experiments::first_state_transform(estimate, options_.align_to));
+          quality_->set_map_to_truth(evaluation::first_state_transform(estimate, options_.align_to));
         quality_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
       }
       if (quality_global_) quality_global_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
@@ -292,13 +292,13 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
                     {"check_period_s", options_.network->check_period_s},
                     {"timeout_s", options_.network->timeout_s}};
   }
-  j["time_per_mapped_frame_ms"] = {{"cloud_median", percentile(cloud_ms_, 0.5)},
-                                   {"insert_median", percentile(insert_ms_, 0.5)},
-                                   {"layers_median", percentile(layers_ms_, 0.5)},
-                                   {"esdf_median", percentile(esdf_ms_, 0.5)},
-                                   {"median", percentile(total_ms_, 0.5)},
-                                   {"p90", percentile(total_ms_, 0.9)},
-                                   {"max", percentile(total_ms_, 1.0)}};
+  j["time_per_mapped_frame_ms"] = {{"cloud_median", runtime::percentile(cloud_ms_, 0.5)},
+                                   {"insert_median", runtime::percentile(insert_ms_, 0.5)},
+                                   {"layers_median", runtime::percentile(layers_ms_, 0.5)},
+                                   {"esdf_median", runtime::percentile(esdf_ms_, 0.5)},
+                                   {"median", runtime::percentile(total_ms_, 0.5)},
+                                   {"p90", runtime::percentile(total_ms_, 0.9)},
+                                   {"max", runtime::percentile(total_ms_, 1.0)}};
   j["memory"] = memory_;
   if (quality_) j["quality"] = quality_json(quality_->result(), *scenario_);
   if (quality_global_) j["quality_global"] = quality_json(quality_global_->result(), *scenario_);

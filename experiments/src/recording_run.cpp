@@ -22,14 +22,15 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
 #include "navaid/estimation/sliding_window_estimator.hpp"
-#include "navaid/experiments/absolute_trajectory_error.hpp"
-#include "navaid/experiments/enu_position_error.hpp"
-#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/evaluation/absolute_trajectory_error.hpp"
+#include "navaid/evaluation/enu_position_error.hpp"
+#include "navaid/evaluation/start_alignment.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/experiments/map_session.hpp"
-#include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/experiments/progress.hpp"
+#include "navaid/runtime/estimator_pipeline.hpp"
 #include "navaid/experiments/run_output_stream.hpp"
 #include "navaid/experiments/run_topview.hpp"
 
@@ -45,7 +46,7 @@ struct AteSummary {
   double rmse_m = 0;
   double path_length_m = 0;
   std::size_t poses = 0;
-  Similarity W_to_groundtruth;
+  evaluation::Similarity W_to_groundtruth;
 };
 
 /// ATE RMSE of the estimated positions after the 4-DOF (position + yaw) alignment onto ground
@@ -53,9 +54,9 @@ struct AteSummary {
 /// the estimator's W frame is arbitrary. Initializing frames carry no estimate and are left out.
 std::optional<AteSummary> ate_4dof(const std::vector<io::StampedPose>& trajectory,
                                    const std::vector<io::StampedPose>& gt) {
-  const auto pairs = associate_poses(trajectory, gt);
+  const auto pairs = evaluation::associate_poses(trajectory, gt);
   if (pairs.size() < 3) return std::nullopt;
-  const auto ate = compute_ate(pairs, {AlignmentMode::kPosYaw, 0});
+  const auto ate = evaluation::compute_ate(pairs, {evaluation::AlignmentMode::kPosYaw, 0});
   AteSummary r;
   r.rmse_m = ate.position.rmse;
   r.poses = pairs.size();
@@ -120,8 +121,8 @@ nlohmann::ordered_json stage_summary(const std::vector<FrameTiming>& frames) {
     est.push_back(r.estimator_ms);
   }
   nlohmann::ordered_json j;
-  j["frontend"] = stage_distribution(fe);
-  j["estimator"] = stage_distribution(est);
+  j["frontend"] = runtime::stage_distribution(fe);
+  j["estimator"] = runtime::stage_distribution(est);
   return j;
 }
 
@@ -206,24 +207,32 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   }
 
   estimation::SlidingWindowEstimator estimator(recording.calibration, est_config, camera, recording.origin);
-  std::optional<estimation::ImageFeatureSource> source;
+  std::optional<runtime::EstimatorDriver> driver_storage;
   if (input == Input::kImages) {
     // Replay is deterministic only with OpenCV's parallel loops off (they change the tracks' last bits).
     estimation::set_opencv_threads(1);
-    source.emplace(recording.calibration, frontend_config, camera, &load_tracking_images);
+    driver_storage.emplace(std::move(estimator),
+                           estimation::ImageFeatureSource(recording.calibration, frontend_config, camera,
+                                                          &load_tracking_images));
+  } else {
+    driver_storage.emplace(std::move(estimator));
   }
+  runtime::EstimatorDriver& driver = *driver_storage;
   std::filesystem::create_directories(a.out);
   // estimates.csv, trajectory.tum and timing.csv grow as the run goes; the run keeps a compact
   // record of each frame only.
   RunOutputStream stream(a.out, a.realtime);
 
-  PipelineInput pipeline_input{recording, camera, estimator, nullptr, {}, false, camera_frames, {}, {}, {}};
-  pipeline_input.on_record = [&](const FrameRecord& r) { stream.add(r); };
-  if (source) {
-    pipeline_input.source = &*source;
+  runtime::PipelineInput pipeline_input{recording, camera, driver, {}, false, {}, {}, {}, {}};
+  pipeline_input.on_record = [&](const runtime::FrameRecord& r) { stream.add(r); };
+  if (driver.image_input()) {
     pipeline_input.load_images = &load_tracking_images;
     pipeline_input.imu_prediction = frontend_config.imu_prediction;
   }
+  Progress progress(std::string(driver.image_input() ? "tracking and estimating" : "estimating") +
+                        (a.realtime ? " (real time)" : ""),
+                    camera_frames);
+  pipeline_input.on_progress = [&progress](std::size_t frames) { progress.update(frames); };
   // mapping.enabled: the map is built as the estimates come (map/, the same folder navaid map writes).
   std::optional<MapSession> map_session;
   std::map<Timestamp, const RgbdFrame*> frame_at;
@@ -266,9 +275,10 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
         device_run->on_frame_arrival(t, arrival);
       };
   }
-  PipelineResult result;
+  runtime::PipelineResult result;
   try {
-    result = a.realtime ? realtime_pipeline(pipeline_input, a.realtime_options) : replay_pipeline(pipeline_input);
+    result = a.realtime ? runtime::realtime_pipeline(pipeline_input, a.realtime_options) : runtime::replay_pipeline(pipeline_input);
+    progress.finish();
   } catch (const std::exception& e) {
     if (!device_run) throw;
     // A stage failed: keep what the run made so far, and say where it stopped.
@@ -285,7 +295,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   // The walk is over; what follows reads the whole run at once (scripts/long-walk.py tells the
   // two phases apart by this line).
   spdlog::info("{} frames estimated; evaluating the run", stream.estimates().size());
-  const std::vector<RunEstimate>& estimates = stream.estimates();
+  const std::vector<evaluation::RunEstimate>& estimates = stream.estimates();
   std::vector<double> frame_ms, estimator_ms;
   frame_ms.reserve(stream.timings().size());
   estimator_ms.reserve(stream.timings().size());
@@ -299,7 +309,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     if (e.mode != EstimatorMode::kInitializing) poses.push_back({e.pose.t, e.pose.T_W_B});
   std::ofstream(a.out / "config.yaml") << config.dump();
 
-  const auto& st = estimator.statistics();
+  const auto& st = driver.estimator().statistics();
   nlohmann::ordered_json j;
   j["recording"] = a.recording.string();
   j["input"] = input == Input::kImages ? "images (front end)" : "features";
@@ -333,9 +343,9 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
                    {"last", st.last_failure}};
   if (st.initialized_at_s >= 0 && !recording.imu.empty())
     j["initialization"]["time_s"] = st.initialized_at_s - ns_to_seconds(recording.imu.front().t);
-  if (est_config.estimate_time_offset) j["camera_time_offset_s"] = estimator.camera_time_offset_s();
+  if (est_config.estimate_time_offset) j["camera_time_offset_s"] = driver.estimator().camera_time_offset_s();
   if (est_config.estimate_extrinsic) {
-    const SE3 T = estimator.camera_extrinsic();
+    const SE3 T = driver.estimator().camera_extrinsic();
     j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},
                                    {"q_wxyz", {T.q.w(), T.q.x(), T.q.y(), T.q.z()}}};
   }
@@ -364,11 +374,11 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     j["mapping"] = {{"folder", "map"}, {"frames", m["frames"]}, {"time_per_mapped_frame_ms", m["time_per_mapped_frame_ms"]}};
     if (m.contains("quality")) j["mapping"]["quality"] = m["quality"]["occupancy"];
   }
-  j["time_per_frame_ms"] = {{"median", percentile(frame_ms, 0.5)}, {"p99", percentile(frame_ms, 0.99)},
+  j["time_per_frame_ms"] = {{"median", runtime::percentile(frame_ms, 0.5)}, {"p99", runtime::percentile(frame_ms, 0.99)},
                             {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())},
-                            {"estimator_median", percentile(estimator_ms, 0.5)},
-                            {"estimator_p99", percentile(estimator_ms, 0.99)}};
-  if (source) {
+                            {"estimator_median", runtime::percentile(estimator_ms, 0.5)},
+                            {"estimator_p99", runtime::percentile(estimator_ms, 0.99)}};
+  if (driver.image_input()) {
     std::vector<double> track_ms, load_ms, live_ms;
     for (const auto& r : stream.timings())
       if (r.frontend) {
@@ -378,13 +388,13 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
       }
     auto& t = j["time_per_frame_ms"];
     // What a camera handing over pixels would cost: the frame without decoding its PNGs.
-    t["without_image_load_median"] = percentile(live_ms, 0.5);
-    t["without_image_load_p99"] = percentile(live_ms, 0.99);
-    t["frontend_median"] = percentile(track_ms, 0.5);
-    t["frontend_p99"] = percentile(track_ms, 0.99);
-    t["image_load_median"] = percentile(load_ms, 0.5);
-    t["image_load_p99"] = percentile(load_ms, 0.99);
-    j["frontend"] = {{"frames_tracked", source->frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
+    t["without_image_load_median"] = runtime::percentile(live_ms, 0.5);
+    t["without_image_load_p99"] = runtime::percentile(live_ms, 0.99);
+    t["frontend_median"] = runtime::percentile(track_ms, 0.5);
+    t["frontend_p99"] = runtime::percentile(track_ms, 0.99);
+    t["image_load_median"] = runtime::percentile(load_ms, 0.5);
+    t["image_load_p99"] = runtime::percentile(load_ms, 0.99);
+    j["frontend"] = {{"frames_tracked", driver.frontend_source().frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
   }
   std::string ate_text = "no ground truth";
   // The ground truth's poses, once for every measure below (an hour's is ~50 MB).
@@ -405,9 +415,9 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     // Consistency: NEES in the frame of the estimator's first state (the one its covariance grows
     // from); averaged over this run's frames (correlated in time: indicative; average the values
     // of independent seeds, e.g. with navaid ablate, for the chi-square test).
-    const auto aligned = align_to_first_state(estimates, gt);
+    const auto aligned = evaluation::align_to_first_state(estimates, gt);
     if (!aligned.empty()) {
-      const auto nees = first_state_nees(aligned, gt);
+      const auto nees = evaluation::first_state_nees(aligned, gt);
       j["nees"] = {{"frame", "first state (4-DOF: yaw + translation at the first estimate)"},
                    {"position_mean", nees.position_summary.average},
                    {"orientation_mean", nees.orientation_summary.average},
@@ -426,7 +436,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     nlohmann::ordered_json g;
     g["registered_frames"] = enu.size();
     g["outlier_fixes"] = st.gps_outliers;  // left out by the innovation gate (estimator.gps.outlier_gate)
-    const auto error = enu_position_error(enu, gt);
+    const auto error = evaluation::enu_position_error(enu, gt);
     if (error) {
       g["first_registered_s"] = ns_to_seconds(enu.front().t - recording.imu.front().t);
       g["enu_position_rmse_m"] = error->rmse_m;
@@ -439,7 +449,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
       for (const auto& p : enu) times.push_back(p.t);
       estimation::GpsRegistrationOptions options;
       options.error_correlation_time_s = est_config.gps_correlation_time_s;
-      const auto reference_json = [](const EnuPositionError& e, const char* note) {
+      const auto reference_json = [](const evaluation::EnuPositionError& e, const char* note) {
         return nlohmann::ordered_json{{"rmse_m", e.rmse_m},
                                       {"horizontal_rmse_m", e.horizontal_rmse_m},
                                       {"vertical_rmse_m", e.vertical_rmse_m},
@@ -447,10 +457,10 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
                                       {"note", note}};
       };
       const Vec3& lever = recording.calibration.gps_lever_arm_B;
-      if (const auto r = rigid_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+      if (const auto r = evaluation::rigid_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
         g["rigid_registration_reference"] =
             reference_json(*r, "the ground truth registered to all fixes (4-DOF): the multipath averaged over the walk");
-      if (const auto r = causal_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+      if (const auto r = evaluation::causal_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
         g["causal_registration_reference"] = reference_json(
             *r, "the ground truth registered to the fixes up to each frame (4-DOF), as a causal estimator sees them");
     }
@@ -472,7 +482,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
                             ate->path_length_m)
               : a.recording.filename().string();
       draw_run_topview(a.out, estimates, recording.groundtruth,
-                       ate ? std::optional<Similarity>(ate->W_to_groundtruth) : std::nullopt, title);
+                       ate ? std::optional<evaluation::Similarity>(ate->W_to_groundtruth) : std::nullopt, title);
     } catch (const std::exception& e) {
       spdlog::warn("topview.png not drawn: {}", e.what());
     }
@@ -507,12 +517,12 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     }
   }
   std::string frontend_text;
-  if (source)
+  if (driver.image_input())
     frontend_text = fmt::format(" (front end {:.1f})", j["time_per_frame_ms"]["frontend_median"].get<double>());
   return fmt::format(
       "wrote {}: {} frames from {}, {} keyframes, {:.0f} % RGBD-VIO, {:.0f} % VIO, median {:.1f} ms/frame{}; {}\n",
       a.out.string(), estimates.size(), input == Input::kImages ? "images" : "features", st.keyframes,
-      100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(), percentile(frame_ms, 0.5),
+      100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(), runtime::percentile(frame_ms, 0.5),
       frontend_text, ate_text + device_text);
 }
 

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/absolute_trajectory_error.hpp"
+#include "navaid/evaluation/absolute_trajectory_error.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 
 namespace navaid::experiments {
@@ -31,10 +31,10 @@ std::vector<double> write_aligned_trajectories(const std::filesystem::path& grou
   std::vector<double> rmse;
   for (const auto& m : methods) {
     const auto est = io::read_tum_trajectory(m.trajectory);
-    const auto pairs = associate_poses(est, gt);
+    const auto pairs = evaluation::associate_poses(est, gt);
     if (pairs.empty()) throw Error(fmt::format("{}: no pose of {} matches the ground truth {} in time", m.method,
                                                m.trajectory.string(), groundtruth_tum.string()));
-    const AteResult ate = compute_ate(pairs, {AlignmentMode::kPosYaw, 0});
+    const evaluation::AteResult ate = evaluation::compute_ate(pairs, {evaluation::AlignmentMode::kPosYaw, 0});
     for (std::size_t i = 0; i < pairs.size(); ++i) row(m.method, pairs[i].t_est, ate.aligned[i].t);
     rmse.push_back(ate.position.rmse);
   }

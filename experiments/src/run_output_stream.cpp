@@ -17,7 +17,7 @@ std::ofstream open_for_writing(const std::filesystem::path& file) {
   return out;
 }
 
-double frontend_ms(const FrameRecord& r) { return r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0; }
+double frontend_ms(const runtime::FrameRecord& r) { return r.frontend ? r.frontend->track_ms + r.frontend->load_ms : 0.0; }
 
 std::string estimate_row(const StateEstimate& s) {
   const auto& P = s.covariance;
@@ -35,7 +35,7 @@ std::string estimate_row(const StateEstimate& s) {
   return row;
 }
 
-std::string timing_row(const FrameRecord& r, bool realtime) {
+std::string timing_row(const runtime::FrameRecord& r, bool realtime) {
   std::string row = fmt::format("{},{:.4f},{}", r.estimate.t, r.ms, to_string(r.estimate.mode));
   row += r.frontend ? fmt::format(",{:.4f},{:.4f}", r.frontend->track_ms, r.frontend->load_ms) : std::string(",,");
   if (realtime) {
@@ -49,7 +49,7 @@ std::string timing_row(const FrameRecord& r, bool realtime) {
 
 }  // namespace
 
-double estimator_ms_of(const FrameRecord& r) { return r.estimator_ms ? *r.estimator_ms : r.ms - frontend_ms(r); }
+double estimator_ms_of(const runtime::FrameRecord& r) { return r.estimator_ms ? *r.estimator_ms : r.ms - frontend_ms(r); }
 
 RunOutputStream::RunOutputStream(const std::filesystem::path& run_dir, bool realtime)
     : estimates_path_(run_dir / "estimates.csv"),
@@ -68,14 +68,14 @@ RunOutputStream::RunOutputStream(const std::filesystem::path& run_dir, bool real
               << ",keyframe,solve_ms,covariance_ms,marginalization_ms\n";
 }
 
-void RunOutputStream::add(const FrameRecord& r) {
+void RunOutputStream::add(const runtime::FrameRecord& r) {
   const StateEstimate& e = r.estimate;
   estimates_csv_ << estimate_row(e) << '\n';
   timing_csv_ << timing_row(r, realtime_) << '\n';
   if (e.mode != EstimatorMode::kInitializing) trajectory_.add({e.t, e.T_W_B});
   if (!estimates_csv_) throw IoError(estimates_path_.string(), "write failed");
   if (!timing_csv_) throw IoError(timing_path_.string(), "write failed");
-  estimates_.push_back(run_estimate(e));
+  estimates_.push_back(evaluation::run_estimate(e));
   timings_.push_back({e.t, r.ms, estimator_ms_of(r), r.frontend});
 }
 

@@ -29,9 +29,9 @@ void write_points(const fs::path& file, const std::vector<Point>& points) {
 
 }  // namespace
 
-void draw_run_topview(const fs::path& run_dir, const std::vector<RunEstimate>& estimates,
+void draw_run_topview(const fs::path& run_dir, const std::vector<evaluation::RunEstimate>& estimates,
                       const std::vector<GroundTruthState>& groundtruth,
-                      const std::optional<experiments::Similarity>& W_to_groundtruth, const std::string& title) {
+                      const std::optional<evaluation::Similarity>& W_to_groundtruth, const std::string& title) {
   std::vector<Point> track, enu;
   for (const auto& e : estimates) {
     if (e.mode == EstimatorMode::kInitializing) continue;

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "navaid/core/random_draws.hpp"
-#include "navaid/experiments/monte_carlo_nees.hpp"
+#include "navaid/evaluation/monte_carlo_nees.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "synthetic_trajectory.hpp"
@@ -84,13 +84,13 @@ TEST(ConsistencyCli, GlobOfRunFoldersGivesTheLibrarysAnees) {
   for (const char* f : {"consistency.csv", "consistency.json", "consistency.md", "consistency.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
 
-  std::vector<navaid::experiments::NeesSeries> series;
+  std::vector<navaid::evaluation::NeesSeries> series;
   for (unsigned s = 1; s <= 4; ++s) {
     const fs::path folder = study.dir / "runs" / ("seed" + std::to_string(s));
-    series.push_back(navaid::experiments::first_state_nees_series(
+    series.push_back(navaid::evaluation::first_state_nees_series(
         folder.string(), navaid::experiments::read_estimates_csv(folder / "estimates.csv"), study.gt));
   }
-  const auto m = navaid::experiments::monte_carlo_nees(series);
+  const auto m = navaid::evaluation::monte_carlo_nees(series);
   std::ifstream csv(out / "consistency.csv");
   std::string line;
   std::getline(csv, line);

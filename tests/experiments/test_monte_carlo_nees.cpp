@@ -9,10 +9,10 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/core/random_draws.hpp"
-#include "navaid/experiments/monte_carlo_nees.hpp"
-#include "navaid/experiments/nees.hpp"
+#include "navaid/evaluation/monte_carlo_nees.hpp"
+#include "navaid/evaluation/nees.hpp"
 #include "navaid/experiments/run_folder.hpp"
-#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/evaluation/start_alignment.hpp"
 #include "test_support.hpp"
 
 using navaid::Error;
@@ -22,6 +22,7 @@ using navaid::SE3;
 using navaid::Timestamp;
 using navaid::Vec3;
 using navaid::testing::expect_throw;
+using namespace navaid::evaluation;
 using namespace navaid::experiments;
 
 namespace {

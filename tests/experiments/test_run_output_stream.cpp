@@ -10,7 +10,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/run_folder.hpp"
-#include "navaid/experiments/start_alignment.hpp"
+#include "navaid/evaluation/start_alignment.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "test_support.hpp"
 
@@ -20,8 +20,8 @@ namespace {
 using navaid::testing::read_text;
 using navaid::testing::ScratchDir;
 
-FrameRecord record(int k, EstimatorMode mode) {
-  FrameRecord r;
+runtime::FrameRecord record(int k, EstimatorMode mode) {
+  runtime::FrameRecord r;
   r.estimate.t = seconds_to_ns(0.1 * k);
   r.estimate.mode = mode;
   r.estimate.T_W_B = SE3(quat_from_rpy(0.01 * k, -0.02 * k, 0.3 * k), Vec3(0.5 * k, -0.25 * k, 1.0 + 0.01 * k));
@@ -31,7 +31,7 @@ FrameRecord record(int k, EstimatorMode mode) {
   if (k >= 2) r.estimate.T_ENU_W = SE3(quat_from_rpy(0, 0, 0.7), Vec3(3, 4, 5));
   r.ms = 10.0 + k;
   r.stages.solve_ms = 4.0 + k;
-  if (k % 2 == 1) r.frontend = FrontendTime{2.0, 1.5};
+  if (k % 2 == 1) r.frontend = runtime::FrontendTime{2.0, 1.5};
   return r;
 }
 
@@ -43,7 +43,7 @@ std::size_t lines(const std::string& text) {
 
 TEST(RunOutputStream, WritesEveryRecordAsItComesAndKeepsItsCompactPart) {
   ScratchDir dir("run-output-stream");
-  const std::vector<FrameRecord> records{record(0, EstimatorMode::kInitializing), record(1, EstimatorMode::kVio),
+  const std::vector<runtime::FrameRecord> records{record(0, EstimatorMode::kInitializing), record(1, EstimatorMode::kVio),
                                          record(2, EstimatorMode::kRgbdVio), record(3, EstimatorMode::kImuOnly)};
   RunOutputStream stream(dir.path(), false);
   for (const auto& r : records) stream.add(r);
@@ -90,8 +90,8 @@ TEST(RunOutputStream, WritesEveryRecordAsItComesAndKeepsItsCompactPart) {
     full.push_back(r.estimate);
     gt.push_back({r.estimate.t, SE3(quat_from_rpy(0, 0, 0.1), Vec3(1, 1, 1)) * r.estimate.T_W_B});
   }
-  const auto from_full = align_to_first_state(full, gt);
-  const auto from_compact = align_to_first_state(stream.estimates(), gt);
+  const auto from_full = evaluation::align_to_first_state(full, gt);
+  const auto from_compact = evaluation::align_to_first_state(stream.estimates(), gt);
   ASSERT_EQ(from_full.size(), 3u);
   ASSERT_EQ(from_compact.size(), from_full.size());
   for (std::size_t i = 0; i < from_full.size(); ++i) {
@@ -105,12 +105,12 @@ TEST(RunOutputStream, WritesEveryRecordAsItComesAndKeepsItsCompactPart) {
 TEST(RunOutputStream, RealTimeAddsItsColumnsAndABadPoseIsAClearError) {
   ScratchDir dir("run-output-stream-rt");
   RunOutputStream stream(dir.path(), true);
-  FrameRecord r = record(1, EstimatorMode::kVio);
+  runtime::FrameRecord r = record(1, EstimatorMode::kVio);
   r.estimator_ms = 6.0;
   r.latency_ms = 20.0;
   stream.add(r);
   EXPECT_DOUBLE_EQ(stream.timings()[0].estimator_ms, 6.0);  // real time: the estimator thread's share
-  FrameRecord earlier = record(0, EstimatorMode::kVio);
+  runtime::FrameRecord earlier = record(0, EstimatorMode::kVio);
   try {
     stream.add(earlier);
     FAIL() << "a pose before the previous one was accepted";

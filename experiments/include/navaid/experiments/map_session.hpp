@@ -14,7 +14,7 @@
 #include "navaid/core/config.hpp"
 #include "navaid/core/state_estimate.hpp"
 #include "navaid/interaction/guidance_timeline_csv.hpp"
-#include "navaid/experiments/map_quality.hpp"
+#include "navaid/evaluation/map_quality.hpp"
 #include "navaid/io/recording.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/mapping/map_top_view.hpp"
@@ -108,7 +108,7 @@ class MapSession {
   mapping::Mapper mapper_;
   mapping::MapTopView top_view_;
   std::optional<simulation::Scenario> scenario_;
-  std::unique_ptr<experiments::MapQualityAccumulator> quality_, quality_global_;
+  std::unique_ptr<evaluation::MapQualityAccumulator> quality_, quality_global_;
   std::ofstream timing_;
   std::vector<double> cloud_ms_, insert_ms_, layers_ms_, esdf_ms_, total_ms_;
   nlohmann::ordered_json memory_ = nlohmann::ordered_json::array();

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "navaid/core/config.hpp"
-#include "navaid/experiments/estimator_pipeline.hpp"
+#include "navaid/runtime/estimator_pipeline.hpp"
 #include "navaid/io/ros_bag.hpp"
 
 namespace navaid::experiments {
@@ -15,7 +15,7 @@ struct RecordingRunOptions {
   std::filesystem::path recording, out;
   Config config;  ///< estimator.*, frontend.*, mapping.*, and for a device device.*, planning.*, interaction.*
   bool realtime = false;
-  RealtimeOptions realtime_options;
+  runtime::RealtimeOptions realtime_options;
   std::size_t device_queue = 8;  ///< real time: estimates that may wait for the device thread
   bool plot = true;              ///< topview.png, cues.png, report.html
   /// A ROS bag as the recording is first converted into out/recording with these options.

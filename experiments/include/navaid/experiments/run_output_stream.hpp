@@ -10,8 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include "navaid/experiments/estimator_pipeline.hpp"
-#include "navaid/experiments/run_estimate.hpp"
+#include "navaid/runtime/estimator_pipeline.hpp"
+#include "navaid/evaluation/run_estimate.hpp"
 #include "navaid/io/tum_trajectory.hpp"
 
 namespace navaid::experiments {
@@ -19,14 +19,14 @@ namespace navaid::experiments {
 /// What a frame cost, as the summary and stages.csv need it.
 struct FrameTiming {
   Timestamp t = 0;
-  double ms = 0;            ///< FrameRecord::ms
+  double ms = 0;            ///< runtime::FrameRecord::ms
   double estimator_ms = 0;  ///< the estimator's share (replay: ms less loading and tracking)
-  std::optional<FrontendTime> frontend;
+  std::optional<runtime::FrontendTime> frontend;
 };
 
 /// The estimator's half of a record's cost: real time, the estimator thread's share; replay, what
 /// the frame cost beyond loading and tracking its images.
-double estimator_ms_of(const FrameRecord& r);
+double estimator_ms_of(const runtime::FrameRecord& r);
 
 class RunOutputStream {
  public:
@@ -36,13 +36,13 @@ class RunOutputStream {
 
   /// Writes the record's rows and keeps its compact part. IoError on a write failure or a
   /// trajectory pose that is not finite or not after the previous one.
-  void add(const FrameRecord& r);
+  void add(const runtime::FrameRecord& r);
   /// Flushes and closes the files; IoError when a write failed. Called once, at the run's end.
   void close();
   /// Flushes what was written so far without judging it (a failing run keeps its rows).
   void flush();
 
-  const std::vector<RunEstimate>& estimates() const { return estimates_; }
+  const std::vector<evaluation::RunEstimate>& estimates() const { return estimates_; }
   const std::vector<FrameTiming>& timings() const { return timings_; }
 
  private:
@@ -50,7 +50,7 @@ class RunOutputStream {
   std::ofstream estimates_csv_, timing_csv_;
   io::TumTrajectoryWriter trajectory_;
   bool realtime_;
-  std::vector<RunEstimate> estimates_;
+  std::vector<evaluation::RunEstimate> estimates_;
   std::vector<FrameTiming> timings_;
 };
 

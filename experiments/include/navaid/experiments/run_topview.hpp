@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "navaid/core/messages.hpp"
-#include "navaid/experiments/run_estimate.hpp"
-#include "navaid/experiments/trajectory_alignment.hpp"
+#include "navaid/evaluation/run_estimate.hpp"
+#include "navaid/evaluation/trajectory_alignment.hpp"
 
 namespace navaid::experiments {
 
@@ -18,8 +18,8 @@ namespace navaid::experiments {
 /// unaligned, when GPS registered W: the simulator's ground truth is ENU); without it, ENU when
 /// GPS registered W, else W. Initializing frames are left out. Throws navaid::Error when the
 /// script fails (the caller decides whether that fails the run) or there is nothing to draw.
-void draw_run_topview(const std::filesystem::path& run_dir, const std::vector<RunEstimate>& estimates,
+void draw_run_topview(const std::filesystem::path& run_dir, const std::vector<evaluation::RunEstimate>& estimates,
                       const std::vector<GroundTruthState>& groundtruth,
-                      const std::optional<experiments::Similarity>& W_to_groundtruth, const std::string& title);
+                      const std::optional<evaluation::Similarity>& W_to_groundtruth, const std::string& title);
 
 }  // namespace navaid::experiments

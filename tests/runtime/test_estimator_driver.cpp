@@ -1,0 +1,135 @@
+// EstimatorDriver: the one entry of sensor events into the front end and the estimator, which
+// replay, real time and closed-loop trials share.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "navaid/core/config.hpp"
+#include "navaid/core/errors.hpp"
+#include "navaid/estimation/estimator_config.hpp"
+#include "navaid/io/event_stream.hpp"
+#include "navaid/io/navaid_recording.hpp"
+#include "navaid/runtime/estimator_driver.hpp"
+#include "navaid/runtime/estimator_pipeline.hpp"
+#include "navaid/simulation/simulator.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using navaid::EstimatorMode;
+using navaid::StateEstimate;
+using navaid::runtime::EstimatorDriver;
+namespace est = navaid::estimation;
+
+// A short feature-level hand walk, made once for the suite.
+const navaid::io::Recording& walk() {
+  static const navaid::io::Recording rec = [] {
+    navaid::testing::ScratchDir dir("runtime_driver_walk");
+    const navaid::Config c = navaid::Config::parse(
+        "{}", "<test>", {"scenario=lab-walk-1", "mount=hand", "simulation.mode=features", "duration=6", "seed=3"});
+    const auto scenario = navaid::simulation::make_scenario(navaid::simulation::read_scenario_name(c),
+                                                            navaid::simulation::read_scenario_options(c));
+    const auto sim = navaid::simulation::read_simulation_config(c, scenario);
+    c.reject_unknown_keys();
+    navaid::simulation::SimulateOptions options;
+    options.threads = 1;
+    navaid::simulation::simulate(scenario, sim, dir.path(), options);
+    return navaid::io::read_navaid_recording(dir.path());
+  }();
+  return rec;
+}
+
+est::SlidingWindowEstimator make_estimator(const navaid::io::Recording& rec) {
+  const navaid::Config c = navaid::Config::parse("{}", "<test>", {});
+  return est::SlidingWindowEstimator(rec.calibration, est::read_estimator_config(c), {}, rec.origin);
+}
+
+void expect_same(const std::vector<StateEstimate>& a, const std::vector<StateEstimate>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].t, b[i].t);
+    EXPECT_EQ(a[i].mode, b[i].mode);
+    EXPECT_EQ(a[i].T_W_B.t, b[i].T_W_B.t) << "estimate " << i;
+    EXPECT_EQ(a[i].T_W_B.q.coeffs(), b[i].T_W_B.q.coeffs()) << "estimate " << i;
+    EXPECT_EQ(a[i].covariance, b[i].covariance) << "estimate " << i;
+  }
+}
+
+TEST(EstimatorDriver, FeatureInputGivesTheEstimatorsOwnEstimatesAndDropsCameraFrames) {
+  const auto& rec = walk();
+  ASSERT_FALSE(rec.features.empty());
+  est::SlidingWindowEstimator bare = make_estimator(rec);
+  EstimatorDriver driver(make_estimator(rec));
+  EXPECT_FALSE(driver.image_input());
+  EXPECT_THROW(driver.frontend_source(), navaid::Error);
+  std::vector<StateEstimate> expected, got;
+  navaid::io::SensorEventStream stream(rec);
+  bool frame_sent = false;
+  while (auto e = stream.next()) {
+    for (auto& s : bare.process(*e)) expected.push_back(s);
+    if (!frame_sent && std::holds_alternative<navaid::FeatureFrame>(*e)) {
+      // The recording's features stand for the images: a camera frame reaches nothing.
+      navaid::RgbdFrame frame;
+      frame.t = navaid::event_time(*e);
+      EXPECT_FALSE(driver.frontend(frame).has_value());
+      EXPECT_TRUE(driver.process(frame).empty());
+      frame_sent = true;
+    }
+    for (auto& s : driver.process(*e)) got.push_back(s);
+  }
+  for (auto& s : bare.finish()) expected.push_back(s);
+  for (auto& s : driver.finish()) got.push_back(s);
+  ASSERT_GT(expected.size(), 20u);
+  expect_same(expected, got);
+  EXPECT_EQ(driver.estimator().statistics().keyframes, bare.statistics().keyframes);
+}
+
+TEST(EstimatorDriver, ReplayAndPerEventDrivingAreOneEntryPoint) {
+  // navaid run replays through replay_pipeline; a closed-loop trial calls process() per event:
+  // both reach the estimator the same way and give the same estimates bit for bit.
+  const auto& rec = walk();
+  EstimatorDriver replayed(make_estimator(rec));
+  std::vector<StateEstimate> from_replay;
+  const std::string camera = rec.calibration.cameras.front().name;
+  navaid::runtime::PipelineInput in{rec, camera, replayed, {}, false, {}, {}, {}, {}};
+  in.on_record = [&](const navaid::runtime::FrameRecord& r) { from_replay.push_back(r.estimate); };
+  std::size_t progress_calls = 0;
+  in.on_progress = [&](std::size_t) { ++progress_calls; };
+  const auto result = navaid::runtime::replay_pipeline(in);
+  EXPECT_EQ(result.frames, from_replay.size());
+  EXPECT_GT(progress_calls, 0u);
+
+  EstimatorDriver per_event(make_estimator(rec));
+  std::vector<StateEstimate> from_events;
+  navaid::io::SensorEventStream stream(rec);
+  while (auto e = stream.next())
+    for (auto& s : per_event.process(*e)) from_events.push_back(s);
+  for (auto& s : per_event.finish()) from_events.push_back(s);
+  expect_same(from_replay, from_events);
+}
+
+TEST(EstimatorDriver, FrontEndCallsNeedImageInput) {
+  const auto& rec = walk();
+  EstimatorDriver driver(make_estimator(rec));
+  EXPECT_THROW(driver.track(navaid::RgbdFrame{}), navaid::Error);
+  EXPECT_THROW(driver.add_frontend_imu(navaid::ImuSample{}), navaid::Error);
+  navaid::runtime::PipelineInput in{rec, "cam0", driver, {}, false, {}, {}, {}, {}};
+  EXPECT_THROW(navaid::runtime::replay_pipeline(in), navaid::Error);  // no on_record
+}
+
+TEST(GyroBiasFeedback, OnlyFromAnEstimatorThatIsTracking) {
+  EXPECT_FALSE(navaid::runtime::gyro_bias_feedback({}));
+  StateEstimate e;
+  e.b_g = navaid::Vec3(0.01, -0.02, 0.03);
+  for (EstimatorMode m : {EstimatorMode::kInitializing, EstimatorMode::kLost}) {
+    e.mode = m;
+    EXPECT_FALSE(navaid::runtime::gyro_bias_feedback({e}));
+  }
+  StateEstimate lost = e;
+  e.mode = EstimatorMode::kRgbdVio;
+  ASSERT_TRUE(navaid::runtime::gyro_bias_feedback({e}));
+  EXPECT_EQ(*navaid::runtime::gyro_bias_feedback({e}), e.b_g);
+  EXPECT_FALSE(navaid::runtime::gyro_bias_feedback({e, lost}));  // the newest one decides
+}
+
+}  // namespace
