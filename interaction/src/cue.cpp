@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "enum_names.hpp"
+#include "navaid/core/enum_names.hpp"
 
 namespace navaid::interaction {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "enum_names.hpp"
+#include "navaid/core/enum_names.hpp"
 
 namespace navaid::interaction {
 

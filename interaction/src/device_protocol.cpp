@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "enum_names.hpp"
+#include "navaid/core/enum_names.hpp"
 
 namespace navaid::interaction {
 

@@ -1,6 +1,6 @@
 #include "navaid/interaction/spoken_message.hpp"
 
-#include "enum_names.hpp"
+#include "navaid/core/enum_names.hpp"
 
 namespace navaid::interaction {
 

@@ -1,6 +1,6 @@
 #include "navaid/interaction/system_event.hpp"
 
-#include "enum_names.hpp"
+#include "navaid/core/enum_names.hpp"
 
 namespace navaid::interaction {
 
