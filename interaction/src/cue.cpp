@@ -8,7 +8,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr detail::NameTable<CueKind, 8> kKindNames{{
+constexpr NameTable<CueKind, 8> kKindNames{{
     {CueKind::kStop, "stop"},
     {CueKind::kObstacle, "obstacle"},
     {CueKind::kArrive, "arrive"},
@@ -19,19 +19,19 @@ constexpr detail::NameTable<CueKind, 8> kKindNames{{
     {CueKind::kSystem, "system"},
 }};
 
-constexpr detail::NameTable<CueIntensity, 2> kIntensityNames{{
+constexpr NameTable<CueIntensity, 2> kIntensityNames{{
     {CueIntensity::kLow, "low"},
     {CueIntensity::kHigh, "high"},
 }};
 
 }  // namespace
 
-std::string_view to_string(CueKind kind) { return detail::name_of(kKindNames, kind); }
-std::optional<CueKind> cue_kind_from_string(std::string_view name) { return detail::value_of(kKindNames, name); }
+std::string_view to_string(CueKind kind) { return enum_name(kKindNames, kind); }
+std::optional<CueKind> cue_kind_from_string(std::string_view name) { return enum_value(kKindNames, name); }
 
-std::string_view to_string(CueIntensity intensity) { return detail::name_of(kIntensityNames, intensity); }
+std::string_view to_string(CueIntensity intensity) { return enum_name(kIntensityNames, intensity); }
 std::optional<CueIntensity> cue_intensity_from_string(std::string_view name) {
-  return detail::value_of(kIntensityNames, name);
+  return enum_value(kIntensityNames, name);
 }
 
 int clock_position(double bearing_rad) {

@@ -8,12 +8,12 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr detail::NameTable<CueChannel, 2> kChannelNames{{
+constexpr NameTable<CueChannel, 2> kChannelNames{{
     {CueChannel::kHaptic, "haptic"},
     {CueChannel::kSpeech, "speech"},
 }};
 
-constexpr detail::NameTable<CueOutcome, kCueOutcomeCount> kOutcomeNames{{
+constexpr NameTable<CueOutcome, kCueOutcomeCount> kOutcomeNames{{
     {CueOutcome::kSent, "sent"},
     {CueOutcome::kRefreshed, "refreshed"},
     {CueOutcome::kSwitchedOff, "switched-off"},
@@ -53,8 +53,8 @@ Timestamp after(Timestamp t, double seconds) { return t + seconds_to_ns(seconds)
 
 }  // namespace
 
-std::string_view to_string(CueChannel channel) { return detail::name_of(kChannelNames, channel); }
-std::string_view to_string(CueOutcome outcome) { return detail::name_of(kOutcomeNames, outcome); }
+std::string_view to_string(CueChannel channel) { return enum_name(kChannelNames, channel); }
+std::string_view to_string(CueOutcome outcome) { return enum_name(kOutcomeNames, outcome); }
 
 CuePolicyConfig read_cue_policy_config(const Config& config) {
   CuePolicyConfig c;

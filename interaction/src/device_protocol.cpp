@@ -12,7 +12,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr detail::NameTable<FrameType, 6> kFrameTypeNames{{
+constexpr NameTable<FrameType, 6> kFrameTypeNames{{
     {FrameType::kPattern, "pattern"},
     {FrameType::kAllOff, "all_off"},
     {FrameType::kHeartbeat, "heartbeat"},
@@ -20,12 +20,12 @@ constexpr detail::NameTable<FrameType, 6> kFrameTypeNames{{
     {FrameType::kNak, "nak"},
     {FrameType::kHeartbeatReply, "heartbeat_reply"},
 }};
-constexpr detail::NameTable<AckStatus, 3> kAckNames{{
+constexpr NameTable<AckStatus, 3> kAckNames{{
     {AckStatus::kApplied, "applied"},
     {AckStatus::kDuplicate, "duplicate"},
     {AckStatus::kStale, "stale"},
 }};
-constexpr detail::NameTable<NakReason, 5> kNakNames{{
+constexpr NameTable<NakReason, 5> kNakNames{{
     {NakReason::kBadLength, "bad_length"},
     {NakReason::kUnknownType, "unknown_type"},
     {NakReason::kWrongDevice, "wrong_device"},
@@ -75,9 +75,9 @@ bool pattern_count_fits(const std::uint8_t* payload, std::size_t len) {
 
 }  // namespace
 
-std::string_view to_string(FrameType type) { return detail::name_of(kFrameTypeNames, type); }
-std::string_view to_string(AckStatus status) { return detail::name_of(kAckNames, status); }
-std::string_view to_string(NakReason reason) { return detail::name_of(kNakNames, reason); }
+std::string_view to_string(FrameType type) { return enum_name(kFrameTypeNames, type); }
+std::string_view to_string(AckStatus status) { return enum_name(kAckNames, status); }
+std::string_view to_string(NakReason reason) { return enum_name(kNakNames, reason); }
 
 std::uint16_t crc16_ccitt_false(const std::uint8_t* data, std::size_t n, std::uint16_t crc) {
   std::size_t i = 0;
