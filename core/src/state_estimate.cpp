@@ -1,11 +1,10 @@
 #include "navaid/core/state_estimate.hpp"
 
-#include <array>
-#include <utility>
+#include "navaid/core/enum_names.hpp"
 
 namespace navaid {
 namespace {
-constexpr std::array<std::pair<EstimatorMode, std::string_view>, 5> kModeNames{{
+constexpr NameTable<EstimatorMode, 5> kModeNames{{
     {EstimatorMode::kInitializing, "initializing"},
     {EstimatorMode::kRgbdVio, "rgbd-vio"},
     {EstimatorMode::kVio, "vio"},
@@ -14,16 +13,8 @@ constexpr std::array<std::pair<EstimatorMode, std::string_view>, 5> kModeNames{{
 }};
 }  // namespace
 
-std::string_view to_string(EstimatorMode mode) {
-  for (const auto& [m, name] : kModeNames)
-    if (m == mode) return name;
-  return "unknown";
-}
+std::string_view to_string(EstimatorMode mode) { return enum_name(kModeNames, mode); }
 
-std::optional<EstimatorMode> estimator_mode_from_string(std::string_view name) {
-  for (const auto& [m, n] : kModeNames)
-    if (n == name) return m;
-  return std::nullopt;
-}
+std::optional<EstimatorMode> estimator_mode_from_string(std::string_view name) { return enum_value(kModeNames, name); }
 
 }  // namespace navaid
