@@ -1,10 +1,9 @@
 #include "navaid/io/open_input.hpp"
 
 #include <algorithm>
-#include <array>
 #include <fstream>
-#include <utility>
 
+#include "navaid/core/enum_names.hpp"
 #include "navaid/io/euroc.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/nmea.hpp"
@@ -18,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::array<std::pair<InputKind, std::string_view>, 7> kNames{{
+constexpr NameTable<InputKind, 7> kNames{{
     {InputKind::kNavaidRecording, "navaid"},
     {InputKind::kEuroc, "euroc"},
     {InputKind::kTumRgbd, "tum-rgbd"},
@@ -61,16 +60,13 @@ bool collection_extension(const fs::path& p) {
 
 }  // namespace
 
-std::string_view to_string(InputKind kind) {
-  for (const auto& [k, name] : kNames)
-    if (k == kind) return name;
-  return "unknown";
-}
+std::string_view to_string(InputKind kind) { return enum_name(kNames, kind); }
 
 std::optional<InputKind> input_kind_from_string(std::string_view name) {
-  for (const auto& [k, n] : kNames)
-    if (n == name && k != InputKind::kCollection) return k;
-  return std::nullopt;
+  // A collection is a folder of recordings, detected only: --format does not take "collection".
+  const std::optional<InputKind> kind = enum_value(kNames, name);
+  if (kind == InputKind::kCollection) return std::nullopt;
+  return kind;
 }
 
 std::vector<fs::path> collection_members(const fs::path& folder) {
