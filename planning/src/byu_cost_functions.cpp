@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
 
@@ -14,6 +15,11 @@ namespace navaid::planning {
 namespace {
 
 constexpr double kOneDegree = kPi / 180.0;
+
+constexpr NameTable<ByuCostFunction, 2> kFunctionNames{{
+    {ByuCostFunction::kFicf, "ficf"},
+    {ByuCostFunction::kCacf, "cacf"},
+}};
 
 void check_path(const std::string& origin, const char* key, double width_m, double distance_m) {
   if (!(0.5 * width_m <= distance_m)) {
@@ -54,18 +60,10 @@ void for_each_return(const mapping::ObstacleScan& scan, const ByuCostConfig& con
 
 }  // namespace
 
-std::string_view to_string(ByuCostFunction function) {
-  switch (function) {
-    case ByuCostFunction::kFicf: return "ficf";
-    case ByuCostFunction::kCacf: return "cacf";
-  }
-  return "unknown";
-}
+std::string_view to_string(ByuCostFunction function) { return enum_name(kFunctionNames, function); }
 
 std::optional<ByuCostFunction> byu_cost_function_from_string(std::string_view name) {
-  if (name == "ficf") return ByuCostFunction::kFicf;
-  if (name == "cacf") return ByuCostFunction::kCacf;
-  return std::nullopt;
+  return enum_value(kFunctionNames, name);
 }
 
 ByuCostConfig read_byu_cost_config(const Config& config) {

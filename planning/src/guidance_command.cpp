@@ -1,62 +1,74 @@
 #include "navaid/planning/guidance_command.hpp"
 
+#include "navaid/core/enum_names.hpp"
+
 namespace navaid::planning {
 
-std::string_view to_string(GuidanceAction action) {
-  switch (action) {
-    case GuidanceAction::kGo: return "go";
-    case GuidanceAction::kStop: return "stop";
-    case GuidanceAction::kWait: return "wait";
-    case GuidanceAction::kArrived: return "arrived";
-  }
-  return "unknown";
+namespace {
+
+constexpr NameTable<GuidanceAction, 4> kActionNames{{
+    {GuidanceAction::kGo, "go"},
+    {GuidanceAction::kStop, "stop"},
+    {GuidanceAction::kWait, "wait"},
+    {GuidanceAction::kArrived, "arrived"},
+}};
+
+constexpr NameTable<GuidanceReason, 14> kReasonNames{{
+    {GuidanceReason::kPathFound, "path-found"},
+    {GuidanceReason::kObstacleAhead, "obstacle-ahead"},
+    {GuidanceReason::kNoPath, "no-path"},
+    {GuidanceReason::kSearchLimit, "search-limit"},
+    {GuidanceReason::kStartBlocked, "start-blocked"},
+    {GuidanceReason::kGoalBlocked, "goal-blocked"},
+    {GuidanceReason::kOffMap, "off-map"},
+    {GuidanceReason::kLocating, "locating"},
+    {GuidanceReason::kRegistrationUncertain, "registration-uncertain"},
+    {GuidanceReason::kTargetNotSeen, "target-not-seen"},
+    {GuidanceReason::kTargetFar, "target-far"},
+    {GuidanceReason::kTargetReached, "target-reached"},
+    {GuidanceReason::kTargetInView, "target-in-view"},
+    {GuidanceReason::kTargetRemembered, "target-remembered"},
+}};
+
+constexpr NameTable<RumbleState, 4> kRumbleNames{{
+    {RumbleState::kOff, "off"},
+    {RumbleState::kLeft, "left"},
+    {RumbleState::kRight, "right"},
+    {RumbleState::kBoth, "both"},
+}};
+
+constexpr NameTable<HandDirection, 11> kHandNames{{
+    {HandDirection::kHold, "hold"},
+    {HandDirection::kRight, "right"},
+    {HandDirection::kUpRight, "up-right"},
+    {HandDirection::kUp, "up"},
+    {HandDirection::kUpLeft, "up-left"},
+    {HandDirection::kLeft, "left"},
+    {HandDirection::kDownLeft, "down-left"},
+    {HandDirection::kDown, "down"},
+    {HandDirection::kDownRight, "down-right"},
+    {HandDirection::kForward, "forward"},
+    {HandDirection::kBackward, "backward"},
+}};
+
+}  // namespace
+
+std::string_view to_string(GuidanceAction action) { return enum_name(kActionNames, action); }
+std::optional<GuidanceAction> guidance_action_from_string(std::string_view name) {
+  return enum_value(kActionNames, name);
 }
 
-std::string_view to_string(GuidanceReason reason) {
-  switch (reason) {
-    case GuidanceReason::kPathFound: return "path-found";
-    case GuidanceReason::kObstacleAhead: return "obstacle-ahead";
-    case GuidanceReason::kNoPath: return "no-path";
-    case GuidanceReason::kSearchLimit: return "search-limit";
-    case GuidanceReason::kStartBlocked: return "start-blocked";
-    case GuidanceReason::kGoalBlocked: return "goal-blocked";
-    case GuidanceReason::kOffMap: return "off-map";
-    case GuidanceReason::kLocating: return "locating";
-    case GuidanceReason::kRegistrationUncertain: return "registration-uncertain";
-    case GuidanceReason::kTargetNotSeen: return "target-not-seen";
-    case GuidanceReason::kTargetFar: return "target-far";
-    case GuidanceReason::kTargetReached: return "target-reached";
-    case GuidanceReason::kTargetInView: return "target-in-view";
-    case GuidanceReason::kTargetRemembered: return "target-remembered";
-  }
-  return "unknown";
+std::string_view to_string(GuidanceReason reason) { return enum_name(kReasonNames, reason); }
+std::optional<GuidanceReason> guidance_reason_from_string(std::string_view name) {
+  return enum_value(kReasonNames, name);
 }
 
-std::string_view to_string(RumbleState state) {
-  switch (state) {
-    case RumbleState::kOff: return "off";
-    case RumbleState::kLeft: return "left";
-    case RumbleState::kRight: return "right";
-    case RumbleState::kBoth: return "both";
-  }
-  return "unknown";
-}
+std::string_view to_string(RumbleState state) { return enum_name(kRumbleNames, state); }
+std::optional<RumbleState> rumble_state_from_string(std::string_view name) { return enum_value(kRumbleNames, name); }
 
-std::string_view to_string(HandDirection direction) {
-  switch (direction) {
-    case HandDirection::kHold: return "hold";
-    case HandDirection::kRight: return "right";
-    case HandDirection::kUpRight: return "up-right";
-    case HandDirection::kUp: return "up";
-    case HandDirection::kUpLeft: return "up-left";
-    case HandDirection::kLeft: return "left";
-    case HandDirection::kDownLeft: return "down-left";
-    case HandDirection::kDown: return "down";
-    case HandDirection::kDownRight: return "down-right";
-    case HandDirection::kForward: return "forward";
-    case HandDirection::kBackward: return "backward";
-  }
-  return "unknown";
+std::string_view to_string(HandDirection direction) { return enum_name(kHandNames, direction); }
+std::optional<HandDirection> hand_direction_from_string(std::string_view name) {
+  return enum_value(kHandNames, name);
 }
 
 }  // namespace navaid::planning

@@ -9,6 +9,9 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
@@ -348,6 +351,19 @@ TEST(ByuConfig, FunctionNames) {
   EXPECT_EQ(byu_cost_function_from_string("cacf"), ByuCostFunction::kCacf);
   EXPECT_FALSE(byu_cost_function_from_string("FICF").has_value());
   EXPECT_EQ(to_string(ByuCostFunction::kCacf), "cacf");
+  EXPECT_EQ(to_string(static_cast<ByuCostFunction>(9)), "unknown");
+}
+
+TEST(ByuConfig, EveryFunctionRoundTripsThroughItsName) {
+  // Every enumerator with its name; a dropped or misspelt table entry fails.
+  const std::vector<std::pair<ByuCostFunction, std::string_view>> functions{
+      {ByuCostFunction::kFicf, "ficf"},
+      {ByuCostFunction::kCacf, "cacf"},
+  };
+  for (const auto& [function, name] : functions) {
+    EXPECT_EQ(to_string(function), name);
+    EXPECT_EQ(byu_cost_function_from_string(to_string(function)), function) << name;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

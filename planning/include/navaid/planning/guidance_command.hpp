@@ -39,15 +39,20 @@ enum class GuidanceReason {
 
 std::string_view to_string(GuidanceAction action);
 std::string_view to_string(GuidanceReason reason);
+/// Inverses of to_string (one name table each); nullopt for unknown names.
+std::optional<GuidanceAction> guidance_action_from_string(std::string_view name);
+std::optional<GuidanceReason> guidance_reason_from_string(std::string_view name);
 
 /// The BYU augmented cane's two rumble remotes (thesis Table 2.1).
 enum class RumbleState { kOff, kLeft, kRight, kBoth };
 std::string_view to_string(RumbleState state);
+std::optional<RumbleState> rumble_state_from_string(std::string_view name);
 
 /// W-ROMA's hand unit: 8 sectors of the virtual image plane (by motor or motor pair) plus the
 /// forward / backward motors, or "hold" when the hand is aligned (paper §IV).
 enum class HandDirection { kHold, kRight, kUpRight, kUp, kUpLeft, kLeft, kDownLeft, kDown, kDownRight, kForward, kBackward };
 std::string_view to_string(HandDirection direction);
+std::optional<HandDirection> hand_direction_from_string(std::string_view name);
 
 struct GuidanceCommand {
   Timestamp t = 0;
