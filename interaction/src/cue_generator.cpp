@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
 
@@ -12,6 +13,16 @@ namespace navaid::interaction {
 using planning::deg_to_rad;
 using planning::GuidanceAction;
 using planning::GuidanceReason;
+
+namespace {
+
+constexpr NameTable<CueModality, 3> kModalityNames{{
+    {CueModality::kBoth, "both"},
+    {CueModality::kHaptic, "haptic"},
+    {CueModality::kAudio, "audio"},
+}};
+
+}  // namespace
 
 CueGeneratorConfig read_cue_generator_config(const Config& config) {
   CueGeneratorConfig c;
@@ -37,24 +48,14 @@ CueGeneratorConfig read_cue_generator_config(const Config& config) {
   c.ttl_speech_s = config.get_double("interaction.cues.ttl_speech_s", c.ttl_speech_s, {0.1, 60.0});
   c.ttl_system_s = config.get_double("interaction.cues.ttl_system_s", c.ttl_system_s, {0.1, 60.0});
   c.modality = *cue_modality_from_string(
-      config.get_string("interaction.cues.modality", "both", {"both", "haptic", "audio"}));
+      config.get_string("interaction.cues.modality", "both", enum_names(kModalityNames)));
   return c;
 }
 
-std::string_view to_string(CueModality modality) {
-  switch (modality) {
-    case CueModality::kBoth: return "both";
-    case CueModality::kHaptic: return "haptic";
-    case CueModality::kAudio: return "audio";
-  }
-  return "unknown";
-}
+std::string_view to_string(CueModality modality) { return enum_name(kModalityNames, modality); }
 
 std::optional<CueModality> cue_modality_from_string(std::string_view name) {
-  for (const CueModality m : {CueModality::kBoth, CueModality::kHaptic, CueModality::kAudio}) {
-    if (to_string(m) == name) return m;
-  }
-  return std::nullopt;
+  return enum_value(kModalityNames, name);
 }
 
 CueGenerator::CueGenerator(CueGeneratorConfig config) : config_(config) {}

@@ -15,24 +15,12 @@ namespace navaid::interaction {
 
 using planning::GuidanceAction;
 using planning::GuidanceCommand;
-using planning::GuidanceReason;
 
 namespace {
 
 constexpr std::array<std::string_view, 11> kColumns = {"t_s",         "type",         "action", "reason",
                                                        "confidence",  "heading_deg",  "steering_deg",
                                                        "rumble",      "hand",         "event",  "value"};
-
-/// A named value of an enum whose names come from to_string, found by trying every value.
-template <typename E>
-std::optional<E> by_name(std::string_view name, int count) {
-  for (int i = 0; i < count; ++i) {
-    const E e = static_cast<E>(i);
-    if (planning::to_string(e) == name) return e;
-  }
-  return std::nullopt;
-}
-
 
 std::string quote(const std::string& s) {
   if (s.find_first_of(",\"") == std::string::npos) return s;
@@ -95,9 +83,9 @@ std::vector<GuidanceTimelineEntry> parse_guidance_timeline_csv(std::istream& in,
     if (type == "guidance") {
       GuidanceCommand c;
       c.t = *t;
-      const auto action = by_name<GuidanceAction>((*f)[2], 4);
+      const auto action = planning::guidance_action_from_string((*f)[2]);
       if (!action) fail(2, "unknown action (go, stop, wait, arrived)");
-      const auto reason = by_name<GuidanceReason>((*f)[3], 14);
+      const auto reason = planning::guidance_reason_from_string((*f)[3]);
       if (!reason) fail(3, "unknown reason");
       c.action = *action;
       c.reason = *reason;
@@ -107,11 +95,11 @@ std::vector<GuidanceTimelineEntry> parse_guidance_timeline_csv(std::istream& in,
       if (const auto h = real(5)) c.heading_rad = planning::wrap_angle(planning::deg_to_rad(*h));
       if (const auto s = real(6)) c.steering_rad = planning::deg_to_rad(*s);
       if (!(*f)[7].empty()) {
-        c.rumble = by_name<planning::RumbleState>((*f)[7], 4);
+        c.rumble = planning::rumble_state_from_string((*f)[7]);
         if (!c.rumble) fail(7, "unknown rumble state (off, left, right, both)");
       }
       if (!(*f)[8].empty()) {
-        c.hand = by_name<planning::HandDirection>((*f)[8], 11);
+        c.hand = planning::hand_direction_from_string((*f)[8]);
         if (!c.hand) fail(8, "unknown hand direction");
       }
       if (c.action == GuidanceAction::kGo && !c.heading_rad && !c.rumble && !c.hand) {

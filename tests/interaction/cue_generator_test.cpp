@@ -6,6 +6,10 @@
 
 #include <cmath>
 #include <random>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/interaction/message_templates.hpp"
@@ -328,6 +332,23 @@ TEST(CueGeneratorModality, HapticKeepsStopAndSystemMessagesOnly) {
   const auto l = g.on_guidance(unsure);
   ASSERT_EQ(l.size(), 1u);
   EXPECT_EQ(l[0].message->id, "locating") << "uncertainty is spoken whatever the modality";
+}
+
+TEST(CueGeneratorModality, EveryModalityRoundTripsThroughItsName) {
+  // Every enumerator with its name (the config key's values); a dropped or misspelt entry fails.
+  const std::vector<std::pair<CueModality, std::string_view>> modalities{
+      {CueModality::kBoth, "both"},
+      {CueModality::kHaptic, "haptic"},
+      {CueModality::kAudio, "audio"},
+  };
+  for (const auto& [modality, name] : modalities) {
+    EXPECT_EQ(to_string(modality), name);
+    EXPECT_EQ(cue_modality_from_string(to_string(modality)), modality) << name;
+    const Config config = Config::parse("{}", "t", {"interaction.cues.modality=" + std::string(name)});
+    EXPECT_EQ(read_cue_generator_config(config).modality, modality) << name;
+  }
+  EXPECT_EQ(cue_modality_from_string("Audio"), std::nullopt);
+  EXPECT_EQ(to_string(static_cast<CueModality>(9)), "unknown");
 }
 
 TEST(CueGeneratorModality, BothIsTheDefaultAndTheKeyIsChecked) {

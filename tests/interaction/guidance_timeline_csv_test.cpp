@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
@@ -73,6 +76,85 @@ TEST(GuidanceTimelineCsv, WriteThenReadGivesTheSameEntries) {
   EXPECT_NEAR(*c2.heading_rad, 0.3, 1e-9);
   EXPECT_EQ(*c2.rumble, planning::RumbleState::kBoth);
   EXPECT_EQ(std::get<SystemEvent>(back[2]).value, "49;left;Main \"High\" Street, north");
+}
+
+TEST(GuidanceTimelineCsv, ReadsEveryNameOfTheGuidanceEnumsAndEvents) {
+  // Each enumerator spelt out as the file has it; a name planning or interaction dropped or
+  // misspelt from its table fails here.
+  const std::vector<std::pair<std::string, planning::GuidanceAction>> actions{
+      {"go", planning::GuidanceAction::kGo},
+      {"stop", planning::GuidanceAction::kStop},
+      {"wait", planning::GuidanceAction::kWait},
+      {"arrived", planning::GuidanceAction::kArrived},
+  };
+  for (const auto& [name, action] : actions) {
+    const auto e = parse(kHeader + "0," + "guidance," + name + ",locating,0,0,,,,,\n");
+    EXPECT_EQ(std::get<planning::GuidanceCommand>(e.at(0)).action, action) << name;
+  }
+  const std::vector<std::pair<std::string, planning::GuidanceReason>> reasons{
+      {"path-found", planning::GuidanceReason::kPathFound},
+      {"obstacle-ahead", planning::GuidanceReason::kObstacleAhead},
+      {"no-path", planning::GuidanceReason::kNoPath},
+      {"search-limit", planning::GuidanceReason::kSearchLimit},
+      {"start-blocked", planning::GuidanceReason::kStartBlocked},
+      {"goal-blocked", planning::GuidanceReason::kGoalBlocked},
+      {"off-map", planning::GuidanceReason::kOffMap},
+      {"locating", planning::GuidanceReason::kLocating},
+      {"registration-uncertain", planning::GuidanceReason::kRegistrationUncertain},
+      {"target-not-seen", planning::GuidanceReason::kTargetNotSeen},
+      {"target-far", planning::GuidanceReason::kTargetFar},
+      {"target-reached", planning::GuidanceReason::kTargetReached},
+      {"target-in-view", planning::GuidanceReason::kTargetInView},
+      {"target-remembered", planning::GuidanceReason::kTargetRemembered},
+  };
+  for (const auto& [name, reason] : reasons) {
+    const auto e = parse(kHeader + "0,guidance,wait," + name + ",0,,,,,,\n");
+    EXPECT_EQ(std::get<planning::GuidanceCommand>(e.at(0)).reason, reason) << name;
+  }
+  const std::vector<std::pair<std::string, planning::RumbleState>> rumbles{
+      {"off", planning::RumbleState::kOff},
+      {"left", planning::RumbleState::kLeft},
+      {"right", planning::RumbleState::kRight},
+      {"both", planning::RumbleState::kBoth},
+  };
+  for (const auto& [name, rumble] : rumbles) {
+    const auto e = parse(kHeader + "0,guidance,go,obstacle-ahead,1,,," + name + ",,,\n");
+    EXPECT_EQ(std::get<planning::GuidanceCommand>(e.at(0)).rumble, rumble) << name;
+  }
+  const std::vector<std::pair<std::string, planning::HandDirection>> hands{
+      {"hold", planning::HandDirection::kHold},
+      {"right", planning::HandDirection::kRight},
+      {"up-right", planning::HandDirection::kUpRight},
+      {"up", planning::HandDirection::kUp},
+      {"up-left", planning::HandDirection::kUpLeft},
+      {"left", planning::HandDirection::kLeft},
+      {"down-left", planning::HandDirection::kDownLeft},
+      {"down", planning::HandDirection::kDown},
+      {"down-right", planning::HandDirection::kDownRight},
+      {"forward", planning::HandDirection::kForward},
+      {"backward", planning::HandDirection::kBackward},
+  };
+  for (const auto& [name, hand] : hands) {
+    const auto e = parse(kHeader + "0,guidance,go,target-in-view,1,,,," + name + ",,\n");
+    EXPECT_EQ(std::get<planning::GuidanceCommand>(e.at(0)).hand, hand) << name;
+  }
+  const std::vector<std::pair<std::string, SystemEventKind>> events{
+      {"initialized", SystemEventKind::kInitialized},
+      {"estimator_mode", SystemEventKind::kEstimatorMode},
+      {"network_lost", SystemEventKind::kNetworkLost},
+      {"network_restored", SystemEventKind::kNetworkRestored},
+      {"link_lost", SystemEventKind::kLinkLost},
+      {"link_restored", SystemEventKind::kLinkRestored},
+      {"camera_fault", SystemEventKind::kCameraFault},
+      {"voice_command", SystemEventKind::kVoiceCommand},
+      {"route_instruction", SystemEventKind::kRouteInstruction},
+  };
+  for (const auto& [name, kind] : events) {
+    EXPECT_EQ(to_string(kind), name);
+    EXPECT_EQ(system_event_kind_from_string(to_string(kind)), kind) << name;
+    const auto e = parse(kHeader + "0,event,,,,,,,," + name + ",\n");
+    EXPECT_EQ(std::get<SystemEvent>(e.at(0)).kind, kind) << name;
+  }
 }
 
 TEST(GuidanceTimelineCsv, MalformedInputIsAClearErrorWithItsLine) {
