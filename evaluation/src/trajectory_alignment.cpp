@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
 
 namespace navaid::evaluation {
@@ -12,6 +13,14 @@ namespace {
 // Singular values below this fraction of the largest count as zero: the point set spans fewer
 // dimensions than the rotation needs.
 constexpr double kRankTolerance = 1e-10;
+
+constexpr NameTable<AlignmentMode, 5> kModeNames{{
+    {AlignmentMode::kNone, "none"},
+    {AlignmentMode::kPosYaw, "4dof"},
+    {AlignmentMode::kSe3, "se3"},
+    {AlignmentMode::kSim3, "sim3"},
+    {AlignmentMode::kScale, "scale"},
+}};
 
 Mat3 rot_z(double yaw) { return Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotationMatrix(); }
 
@@ -29,24 +38,12 @@ Similarity align_by_one_pose(const PosePair& pair, AlignmentMode mode) {
 
 }  // namespace
 
-std::string_view to_string(AlignmentMode mode) {
-  switch (mode) {
-    case AlignmentMode::kNone: return "none";
-    case AlignmentMode::kPosYaw: return "4dof";
-    case AlignmentMode::kSe3: return "se3";
-    case AlignmentMode::kSim3: return "sim3";
-    case AlignmentMode::kScale: return "scale";
-  }
-  return "?";
-}
+std::string_view to_string(AlignmentMode mode) { return enum_name(kModeNames, mode, "?"); }
 
 std::optional<AlignmentMode> alignment_mode_from_string(std::string_view name) {
-  if (name == "none") return AlignmentMode::kNone;
-  if (name == "4dof" || name == "posyaw") return AlignmentMode::kPosYaw;
-  if (name == "se3") return AlignmentMode::kSe3;
-  if (name == "sim3") return AlignmentMode::kSim3;
-  if (name == "scale") return AlignmentMode::kScale;
-  return std::nullopt;
+  // rpg_trajectory_evaluation's name for 4dof: read, never written.
+  if (name == "posyaw") return AlignmentMode::kPosYaw;
+  return enum_value(kModeNames, name);
 }
 
 double best_yaw(const Mat3& K) {

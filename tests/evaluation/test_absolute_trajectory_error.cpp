@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <random>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/evaluation/absolute_trajectory_error.hpp"
@@ -57,10 +60,22 @@ const SE3 kGeneral(navaid::quat_from_rpy(0.4, -0.3, -1.9), Vec3(-2.0, 3.0, 0.5))
 }  // namespace
 
 TEST(Alignment, ModeNames) {
-  for (auto m : {AlignmentMode::kNone, AlignmentMode::kPosYaw, AlignmentMode::kSe3, AlignmentMode::kSim3})
-    EXPECT_EQ(alignment_mode_from_string(to_string(m)), m);
+  // Every enumerator with its name; a dropped or misspelt table entry fails.
+  const std::vector<std::pair<AlignmentMode, std::string_view>> modes{
+      {AlignmentMode::kNone, "none"},
+      {AlignmentMode::kPosYaw, "4dof"},
+      {AlignmentMode::kSe3, "se3"},
+      {AlignmentMode::kSim3, "sim3"},
+      {AlignmentMode::kScale, "scale"},
+  };
+  for (const auto& [m, name] : modes) {
+    EXPECT_EQ(to_string(m), name);
+    EXPECT_EQ(alignment_mode_from_string(to_string(m)), m) << name;
+  }
   EXPECT_EQ(alignment_mode_from_string("posyaw"), AlignmentMode::kPosYaw);
+  EXPECT_EQ(to_string(AlignmentMode::kPosYaw), "4dof") << "posyaw is read, never written";
   EXPECT_FALSE(alignment_mode_from_string("SE3"));
+  EXPECT_EQ(to_string(static_cast<AlignmentMode>(17)), "?");
 }
 
 TEST(Ate, HandComputedWithoutAlignment) {
