@@ -7,9 +7,16 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "navaid/core/enum_names.hpp"
+
 namespace navaid::mapping {
 
 namespace {
+
+constexpr NameTable<DistanceTransformBackend, 2> kBackendNames{{
+    {DistanceTransformBackend::kOpenCv, "opencv"},
+    {DistanceTransformBackend::kDynamicEdt, "dynamicedt3d"},
+}};
 
 void opencv_transform(const ImageU8& mask, ImageF32& out) {
   // OpenCV measures the distance to the nearest zero pixel: zero marks the set cells.
@@ -40,7 +47,12 @@ void dynamic_edt_transform(const ImageU8& mask, ImageF32& out) {
 }  // namespace
 
 std::string to_string(DistanceTransformBackend backend) {
-  return backend == DistanceTransformBackend::kOpenCv ? "opencv" : "dynamicedt3d";
+  // An out-of-range value has always printed as the second backend.
+  return std::string(enum_name(kBackendNames, backend, "dynamicedt3d"));
+}
+
+std::optional<DistanceTransformBackend> distance_transform_backend_from_string(std::string_view name) {
+  return enum_value(kBackendNames, name);
 }
 
 void distance_transform(const ImageU8& mask, DistanceTransformBackend backend, ImageF32& out) {

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace navaid::mapping {
 
 Esdf2dConfig read_esdf_2d_config(const Config& config) {
   Esdf2dConfig e;
-  const std::string backend =
-      config.get_string("mapping.esdf.backend", to_string(e.backend), {"opencv", "dynamicedt3d"});
-  e.backend = backend == "opencv" ? DistanceTransformBackend::kOpenCv : DistanceTransformBackend::kDynamicEdt;
+  const std::vector<std::string> names{to_string(DistanceTransformBackend::kOpenCv),
+                                       to_string(DistanceTransformBackend::kDynamicEdt)};
+  const std::string backend = config.get_string("mapping.esdf.backend", to_string(e.backend), names);
+  e.backend = *distance_transform_backend_from_string(backend);  // get_string has checked the name
   return e;
 }
 

@@ -5,6 +5,9 @@
 #include <limits>
 #include <octomap/OcTree.h>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/core/random_draws.hpp"
@@ -181,6 +184,22 @@ TEST(Esdf2d, BackendConfig) {
   const std::string msg = testing::error_message<ConfigError>(
       [] { read_esdf_2d_config(Config::parse("mapping: {esdf: {backend: fmm}}")); });
   EXPECT_NE(msg.find("mapping.esdf.backend"), std::string::npos) << msg;
+}
+
+TEST(Esdf2d, EveryBackendRoundTripsThroughItsName) {
+  // Every enumerator with its config spelling; a dropped or misspelt table entry fails.
+  const std::vector<std::pair<DistanceTransformBackend, std::string>> backends{
+      {DistanceTransformBackend::kOpenCv, "opencv"},
+      {DistanceTransformBackend::kDynamicEdt, "dynamicedt3d"},
+  };
+  for (const auto& [backend, name] : backends) {
+    EXPECT_EQ(to_string(backend), name);
+    EXPECT_EQ(distance_transform_backend_from_string(to_string(backend)), backend) << name;
+    EXPECT_EQ(read_esdf_2d_config(Config::parse("{}", "t", {"mapping.esdf.backend=" + name})).backend, backend)
+        << name;
+  }
+  EXPECT_EQ(distance_transform_backend_from_string("OpenCV"), std::nullopt);
+  EXPECT_EQ(distance_transform_backend_from_string("dynamicedt"), std::nullopt);
 }
 
 TEST(Esdf3d, DistanceToOneOccupiedVoxel) {

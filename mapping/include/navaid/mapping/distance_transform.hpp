@@ -5,7 +5,9 @@
 // DIST_MASK_PRECISE, Felzenszwalb-Huttenlocher) and dynamicEDT3D run on a one-layer map (Lau's
 // brushfire, made for incremental updates).
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "navaid/core/image.hpp"
 
@@ -15,6 +17,8 @@ enum class DistanceTransformBackend { kOpenCv, kDynamicEdt };
 
 /// "opencv" or "dynamicedt3d" (the config spelling).
 std::string to_string(DistanceTransformBackend backend);
+/// Inverse of to_string; nullopt for any other name.
+std::optional<DistanceTransformBackend> distance_transform_backend_from_string(std::string_view name);
 
 /// Distances [cells] into `out` (resized to the mask's size): 0 on set cells (mask != 0), +inf
 /// everywhere when no cell is set. `mask` has one channel.
