@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
 
 namespace navaid::estimation {
@@ -13,10 +14,68 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// One table per enum: the config key's allowed values, the value read, and to_string.
+constexpr NameTable<GpsMode, 2> kGpsModeNames{{
+    {GpsMode::kJoint, "joint"},
+    {GpsMode::kDecoupled, "decoupled"},
+}};
+constexpr NameTable<FarFeaturePolicy, 2> kFarPolicyNames{{
+    {FarFeaturePolicy::kFree, "free"},
+    {FarFeaturePolicy::kFixed, "fixed"},
+}};
+constexpr NameTable<AnchorBearing, 2> kAnchorBearingNames{{
+    {AnchorBearing::kFixed, "fixed"},
+    {AnchorBearing::kEstimated, "estimated"},
+}};
+constexpr NameTable<LeavingAnchorPolicy, 3> kLeavingAnchorNames{{
+    {LeavingAnchorPolicy::kReuse, "reuse"},
+    {LeavingAnchorPolicy::kRestart, "restart"},
+    {LeavingAnchorPolicy::kReanchor, "reanchor"},
+}};
+constexpr NameTable<Depth3dCovariance, 2> kDepth3dCovarianceNames{{
+    {Depth3dCovariance::kFull, "full"},
+    {Depth3dCovariance::kPaper, "paper"},
+}};
+constexpr NameTable<LossKind, 3> kLossNames{{
+    {LossKind::kCauchy, "cauchy"},
+    {LossKind::kHuber, "huber"},
+    {LossKind::kNone, "none"},
+}};
+constexpr NameTable<LinearSolverKind, 3> kLinearSolverNames{{
+    {LinearSolverKind::kDenseSchur, "dense_schur"},
+    {LinearSolverKind::kSparseSchur, "sparse_schur"},
+    {LinearSolverKind::kSparseNormalCholesky, "sparse_normal_cholesky"},
+}};
+constexpr NameTable<NonKeyframeSolve, 2> kNonKeyframeSolveNames{{
+    {NonKeyframeSolve::kWindow, "window"},
+    {NonKeyframeSolve::kNewest, "newest"},
+}};
+constexpr NameTable<SchurOrdering, 3> kSchurOrderingNames{{
+    {SchurOrdering::kAuto, "auto"},
+    {SchurOrdering::kLandmarks, "landmarks"},
+    {SchurOrdering::kCeres, "ceres"},
+}};
+constexpr NameTable<CovarianceMethod, 3> kCovarianceMethodNames{{
+    {CovarianceMethod::kSchur, "schur"},
+    {CovarianceMethod::kCeres, "ceres"},
+    {CovarianceMethod::kOff, "off"},
+}};
+constexpr NameTable<CovarianceWeights, 2> kCovarianceWeightsNames{{
+    {CovarianceWeights::kRobust, "robust"},
+    {CovarianceWeights::kInliers, "inliers"},
+}};
+constexpr NameTable<InitializationMethod, 3> kInitializationNames{{
+    {InitializationMethod::kStill, "still"},
+    {InitializationMethod::kHybridPnp, "hpnp"},
+    {InitializationMethod::kPnp, "pnp"},
+}};
+
+/// An enum key: Config checks the name against the table's names (its error lists them), the
+/// table gives the value.
 template <class Enum, std::size_t N>
-Enum parse_enum(const std::string& name, const char* const (&names)[N], const Enum (&values)[N]) {
-  for (std::size_t i = 0; i < N; ++i)
-    if (name == names[i]) return values[i];
+Enum get_enum(const Config& c, const char* key, const std::string& fallback, const NameTable<Enum, N>& table) {
+  const std::string name = c.get_string(key, fallback, enum_names(table));
+  if (const std::optional<Enum> value = enum_value(table, name)) return *value;
   throw Error("unreachable: Config::get_string validated '" + name + "'");
 }
 
@@ -85,10 +144,7 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.gps_max_time_offset_s = c.get_double("estimator.gps.max_time_offset", e.gps_max_time_offset_s, {0, 1});
   e.gps_huber_threshold = c.get_double("estimator.gps.huber_threshold", e.gps_huber_threshold, {0.1, 100});
   e.gps_correlation_time_s = c.get_double("estimator.gps.correlation_time", e.gps_correlation_time_s, {0, 1e4});
-  static const char* const gps_mode_names[] = {"joint", "decoupled"};
-  static const GpsMode gps_modes[] = {GpsMode::kJoint, GpsMode::kDecoupled};
-  e.gps_mode = parse_enum(c.get_string("estimator.gps.mode", "joint", {"joint", "decoupled"}), gps_mode_names,
-                          gps_modes);
+  e.gps_mode = get_enum(c, "estimator.gps.mode", "joint", kGpsModeNames);
   e.gps_multipath_fraction = c.get_double("estimator.gps.multipath_fraction", e.gps_multipath_fraction, {0, 0.95});
   e.gps_outlier_gate = c.get_double("estimator.gps.outlier_gate", e.gps_outlier_gate, {0, 1e6});
   e.gps_max_outlier_s = c.get_double("estimator.gps.max_outlier", e.gps_max_outlier_s, {0, 1e4});
@@ -99,30 +155,17 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.far_threshold_m = c.get_double("estimator.features.far_threshold", e.far_threshold_m, {0.1, 1000});
   e.far_depth_sigma_scale =
       c.get_double("estimator.features.far_depth_sigma_scale", e.far_depth_sigma_scale, {0, 1e6});
-  static const char* const policy_names[] = {"free", "fixed"};
-  static const FarFeaturePolicy policies[] = {FarFeaturePolicy::kFree, FarFeaturePolicy::kFixed};
-  e.far_policy = parse_enum(c.get_string("estimator.features.far_policy", "free", {"free", "fixed"}), policy_names,
-                            policies);
+  e.far_policy = get_enum(c, "estimator.features.far_policy", "free", kFarPolicyNames);
   e.pixel_sigma_px = c.get_double("estimator.features.pixel_sigma", e.pixel_sigma_px, {1e-3, 100});
   e.min_visual_features =
       static_cast<int>(c.get_int("estimator.features.min_visual", e.min_visual_features, 0, 10000));
-  static const char* const bearing_names[] = {"fixed", "estimated"};
-  static const AnchorBearing bearings[] = {AnchorBearing::kFixed, AnchorBearing::kEstimated};
-  e.anchor_bearing = parse_enum(c.get_string("estimator.features.anchor_bearing", to_string(e.anchor_bearing),
-                                             {"fixed", "estimated"}),
-                                bearing_names, bearings);
-  static const char* const leaving_names[] = {"reuse", "restart", "reanchor"};
-  static const LeavingAnchorPolicy leaving[] = {LeavingAnchorPolicy::kReuse, LeavingAnchorPolicy::kRestart,
-                                                LeavingAnchorPolicy::kReanchor};
-  e.leaving_anchor = parse_enum(c.get_string("estimator.features.leaving_anchor", to_string(e.leaving_anchor),
-                                             {"reuse", "restart", "reanchor"}),
-                                leaving_names, leaving);
+  e.anchor_bearing =
+      get_enum(c, "estimator.features.anchor_bearing", to_string(e.anchor_bearing), kAnchorBearingNames);
+  e.leaving_anchor =
+      get_enum(c, "estimator.features.leaving_anchor", to_string(e.leaving_anchor), kLeavingAnchorNames);
   e.disparity_sigma_px = c.get_double("estimator.depth.disparity_sigma", e.disparity_sigma_px, {0, 100});
   e.depth_baseline_m = c.get_double("estimator.depth.baseline", e.depth_baseline_m, {0, 10});
-  static const char* const covariance_names[] = {"full", "paper"};
-  static const Depth3dCovariance covariances[] = {Depth3dCovariance::kFull, Depth3dCovariance::kPaper};
-  e.depth_3d_covariance = parse_enum(c.get_string("estimator.depth.point_covariance", "full", {"full", "paper"}),
-                                     covariance_names, covariances);
+  e.depth_3d_covariance = get_enum(c, "estimator.depth.point_covariance", "full", kDepth3dCovarianceNames);
 
   e.keyframe_parallax_px = c.get_double("estimator.keyframe.parallax", e.keyframe_parallax_px, {0, 1000});
   e.keyframe_min_tracked =
@@ -130,49 +173,24 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.keyframe_max_interval_s =
       c.get_double("estimator.keyframe.max_interval", e.keyframe_max_interval_s, {0.01, 100});
 
-  static const char* const loss_names[] = {"cauchy", "huber", "none"};
-  static const LossKind losses[] = {LossKind::kCauchy, LossKind::kHuber, LossKind::kNone};
-  e.loss = parse_enum(c.get_string("estimator.loss.type", "cauchy", {"cauchy", "huber", "none"}), loss_names, losses);
+  e.loss = get_enum(c, "estimator.loss.type", "cauchy", kLossNames);
   e.loss_scale = c.get_double("estimator.loss.scale", e.loss_scale, {1e-3, 1e3});
 
-  static const char* const solver_names[] = {"dense_schur", "sparse_schur", "sparse_normal_cholesky"};
-  static const LinearSolverKind solvers[] = {LinearSolverKind::kDenseSchur, LinearSolverKind::kSparseSchur,
-                                             LinearSolverKind::kSparseNormalCholesky};
-  e.linear_solver = parse_enum(
-      c.get_string("estimator.solver.linear_solver", "dense_schur",
-                   {"dense_schur", "sparse_schur", "sparse_normal_cholesky"}),
-      solver_names, solvers);
+  e.linear_solver = get_enum(c, "estimator.solver.linear_solver", "dense_schur", kLinearSolverNames);
   e.max_iterations = static_cast<int>(c.get_int("estimator.solver.max_iterations", e.max_iterations, 1, 1000));
   e.max_solver_time_s = c.get_double("estimator.solver.max_time", e.max_solver_time_s, {0, 60});
-  static const char* const non_keyframe_names[] = {"window", "newest"};
-  static const NonKeyframeSolve non_keyframe_solves[] = {NonKeyframeSolve::kWindow, NonKeyframeSolve::kNewest};
-  e.non_keyframe_solve = parse_enum(c.get_string("estimator.solver.non_keyframes", to_string(e.non_keyframe_solve),
-                                                 {"window", "newest"}),
-                                    non_keyframe_names, non_keyframe_solves);
-  static const char* const ordering_names[] = {"auto", "landmarks", "ceres"};
-  static const SchurOrdering orderings[] = {SchurOrdering::kAuto, SchurOrdering::kLandmarks, SchurOrdering::kCeres};
-  e.schur_ordering = parse_enum(
-      c.get_string("estimator.solver.schur_ordering", to_string(e.schur_ordering), {"auto", "landmarks", "ceres"}),
-      ordering_names, orderings);
+  e.non_keyframe_solve =
+      get_enum(c, "estimator.solver.non_keyframes", to_string(e.non_keyframe_solve), kNonKeyframeSolveNames);
+  e.schur_ordering =
+      get_enum(c, "estimator.solver.schur_ordering", to_string(e.schur_ordering), kSchurOrderingNames);
 
   e.marginalization = c.get_bool("estimator.marginalization", e.marginalization);
   e.residual_diagnostics = c.get_bool("estimator.diagnostics.residuals", e.residual_diagnostics);
-  static const char* const cov_names[] = {"schur", "ceres", "off"};
-  static const CovarianceMethod covs[] = {CovarianceMethod::kSchur, CovarianceMethod::kCeres, CovarianceMethod::kOff};
-  e.covariance_method =
-      parse_enum(c.get_string("estimator.covariance", "schur", {"schur", "ceres", "off"}), cov_names, covs);
-  static const char* const weight_names[] = {"robust", "inliers"};
-  static const CovarianceWeights weights[] = {CovarianceWeights::kRobust, CovarianceWeights::kInliers};
-  e.covariance_weights = parse_enum(
-      c.get_string("estimator.covariance_weights", "inliers", {"robust", "inliers"}), weight_names, weights);
-  e.prior_weights = parse_enum(
-      c.get_string("estimator.prior_weights", "inliers", {"robust", "inliers"}), weight_names, weights);
+  e.covariance_method = get_enum(c, "estimator.covariance", "schur", kCovarianceMethodNames);
+  e.covariance_weights = get_enum(c, "estimator.covariance_weights", "inliers", kCovarianceWeightsNames);
+  e.prior_weights = get_enum(c, "estimator.prior_weights", "inliers", kCovarianceWeightsNames);
 
-  static const char* const init_names[] = {"still", "hpnp", "pnp"};
-  static const InitializationMethod inits[] = {InitializationMethod::kStill, InitializationMethod::kHybridPnp,
-                                               InitializationMethod::kPnp};
-  e.init_method = parse_enum(c.get_string("estimator.initialization.method", "still", {"still", "hpnp", "pnp"}),
-                             init_names, inits);
+  e.init_method = get_enum(c, "estimator.initialization.method", "still", kInitializationNames);
   e.still_duration_s = c.get_double("estimator.initialization.still_duration", e.still_duration_s, {0.05, 60});
   e.init_sigma_roll_pitch_rad =
       c.get_double("estimator.initialization.sigma_roll_pitch", e.init_sigma_roll_pitch_rad, {1e-6, 1});
@@ -219,54 +237,28 @@ Vec3 calibrated_mag_field(const EstimatorConfig& config, const Vec3& raw) {
   return config.mag_soft_iron.partialPivLu().solve(raw - config.mag_hard_iron);
 }
 
-std::string to_string(LossKind kind) {
-  switch (kind) {
-    case LossKind::kCauchy: return "cauchy";
-    case LossKind::kHuber: return "huber";
-    case LossKind::kNone: return "none";
-  }
-  return "?";
-}
-
-std::string to_string(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::kDenseSchur: return "dense_schur";
-    case LinearSolverKind::kSparseSchur: return "sparse_schur";
-    case LinearSolverKind::kSparseNormalCholesky: return "sparse_normal_cholesky";
-  }
-  return "?";
-}
-
+// Each to_string keeps what it gave an out-of-range value before the tables: "?" where it was a
+// switch with a "?" default, its default name where it was a switch with one, and the second name
+// where it was a two-way ternary.
+std::string to_string(LossKind kind) { return std::string(enum_name(kLossNames, kind, "?")); }
+std::string to_string(LinearSolverKind kind) { return std::string(enum_name(kLinearSolverNames, kind, "?")); }
 std::string to_string(InitializationMethod method) {
-  switch (method) {
-    case InitializationMethod::kStill: return "still";
-    case InitializationMethod::kHybridPnp: return "hpnp";
-    case InitializationMethod::kPnp: return "pnp";
-  }
-  return "?";
+  return std::string(enum_name(kInitializationNames, method, "?"));
 }
-
-std::string to_string(GpsMode mode) { return mode == GpsMode::kJoint ? "joint" : "decoupled"; }
-
-std::string to_string(FarFeaturePolicy policy) { return policy == FarFeaturePolicy::kFree ? "free" : "fixed"; }
+std::string to_string(GpsMode mode) { return std::string(enum_name(kGpsModeNames, mode, "decoupled")); }
+std::string to_string(FarFeaturePolicy policy) { return std::string(enum_name(kFarPolicyNames, policy, "fixed")); }
 std::string to_string(LeavingAnchorPolicy policy) {
-  switch (policy) {
-    case LeavingAnchorPolicy::kReuse: return "reuse";
-    case LeavingAnchorPolicy::kRestart: return "restart";
-    case LeavingAnchorPolicy::kReanchor: return "reanchor";
-  }
-  return "reuse";
+  return std::string(enum_name(kLeavingAnchorNames, policy, "reuse"));
 }
-std::string to_string(AnchorBearing bearing) { return bearing == AnchorBearing::kFixed ? "fixed" : "estimated"; }
-std::string to_string(NonKeyframeSolve solve) { return solve == NonKeyframeSolve::kWindow ? "window" : "newest"; }
-std::string to_string(SchurOrdering ordering) {
-  switch (ordering) {
-    case SchurOrdering::kAuto: return "auto";
-    case SchurOrdering::kLandmarks: return "landmarks";
-    case SchurOrdering::kCeres: return "ceres";
-  }
-  return "auto";
+std::string to_string(AnchorBearing bearing) {
+  return std::string(enum_name(kAnchorBearingNames, bearing, "estimated"));
 }
-std::string to_string(Depth3dCovariance model) { return model == Depth3dCovariance::kFull ? "full" : "paper"; }
+std::string to_string(NonKeyframeSolve solve) {
+  return std::string(enum_name(kNonKeyframeSolveNames, solve, "newest"));
+}
+std::string to_string(SchurOrdering ordering) { return std::string(enum_name(kSchurOrderingNames, ordering, "auto")); }
+std::string to_string(Depth3dCovariance model) {
+  return std::string(enum_name(kDepth3dCovarianceNames, model, "paper"));
+}
 
 }  // namespace navaid::estimation

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -449,6 +452,77 @@ TEST(EstimatorConfig, DefaultsFollowThePaper) {
   EXPECT_TRUE(c.marginalization);
   EXPECT_EQ(c.non_keyframe_solve, NonKeyframeSolve::kNewest);
   EXPECT_EQ(c.schur_ordering, SchurOrdering::kAuto);
+}
+
+// An enum key set to each name reads as its enumerator.
+template <class Enum>
+void expect_key_reads(const std::string& key, Enum EstimatorConfig::*field,
+                      const std::vector<std::pair<Enum, std::string>>& names) {
+  for (const auto& [value, name] : names) {
+    const EstimatorConfig e = read_estimator_config(Config::parse("{}", "<test>", {key + "=" + name}));
+    EXPECT_EQ(e.*field, value) << key << "=" << name;
+  }
+}
+
+// ... and to_string gives that name back.
+template <class Enum>
+void expect_round_trip(const std::string& key, Enum EstimatorConfig::*field,
+                       const std::vector<std::pair<Enum, std::string>>& names) {
+  for (const auto& [value, name] : names) EXPECT_EQ(to_string(value), name) << key;
+  expect_key_reads(key, field, names);
+}
+
+TEST(EstimatorConfig, EveryEnumValueRoundTripsThroughItsName) {
+  // Every enumerator of every enum key with its name; a dropped or misspelt table entry fails.
+  expect_round_trip<GpsMode>("estimator.gps.mode", &EstimatorConfig::gps_mode,
+                             {{GpsMode::kJoint, "joint"}, {GpsMode::kDecoupled, "decoupled"}});
+  expect_round_trip<FarFeaturePolicy>("estimator.features.far_policy", &EstimatorConfig::far_policy,
+                                      {{FarFeaturePolicy::kFree, "free"}, {FarFeaturePolicy::kFixed, "fixed"}});
+  expect_round_trip<AnchorBearing>("estimator.features.anchor_bearing", &EstimatorConfig::anchor_bearing,
+                                   {{AnchorBearing::kFixed, "fixed"}, {AnchorBearing::kEstimated, "estimated"}});
+  expect_round_trip<LeavingAnchorPolicy>("estimator.features.leaving_anchor", &EstimatorConfig::leaving_anchor,
+                                         {{LeavingAnchorPolicy::kReuse, "reuse"},
+                                          {LeavingAnchorPolicy::kRestart, "restart"},
+                                          {LeavingAnchorPolicy::kReanchor, "reanchor"}});
+  expect_round_trip<Depth3dCovariance>("estimator.depth.point_covariance", &EstimatorConfig::depth_3d_covariance,
+                                       {{Depth3dCovariance::kFull, "full"}, {Depth3dCovariance::kPaper, "paper"}});
+  expect_round_trip<LossKind>("estimator.loss.type", &EstimatorConfig::loss,
+                              {{LossKind::kCauchy, "cauchy"}, {LossKind::kHuber, "huber"}, {LossKind::kNone, "none"}});
+  expect_round_trip<LinearSolverKind>("estimator.solver.linear_solver", &EstimatorConfig::linear_solver,
+                                      {{LinearSolverKind::kDenseSchur, "dense_schur"},
+                                       {LinearSolverKind::kSparseSchur, "sparse_schur"},
+                                       {LinearSolverKind::kSparseNormalCholesky, "sparse_normal_cholesky"}});
+  expect_round_trip<NonKeyframeSolve>("estimator.solver.non_keyframes", &EstimatorConfig::non_keyframe_solve,
+                                      {{NonKeyframeSolve::kWindow, "window"}, {NonKeyframeSolve::kNewest, "newest"}});
+  expect_round_trip<SchurOrdering>("estimator.solver.schur_ordering", &EstimatorConfig::schur_ordering,
+                                   {{SchurOrdering::kAuto, "auto"},
+                                    {SchurOrdering::kLandmarks, "landmarks"},
+                                    {SchurOrdering::kCeres, "ceres"}});
+  expect_round_trip<InitializationMethod>("estimator.initialization.method", &EstimatorConfig::init_method,
+                                          {{InitializationMethod::kStill, "still"},
+                                           {InitializationMethod::kHybridPnp, "hpnp"},
+                                           {InitializationMethod::kPnp, "pnp"}});
+  // No to_string for these two: the key reads every name.
+  expect_key_reads<CovarianceMethod>(
+      "estimator.covariance", &EstimatorConfig::covariance_method,
+      {{CovarianceMethod::kSchur, "schur"}, {CovarianceMethod::kCeres, "ceres"}, {CovarianceMethod::kOff, "off"}});
+  const std::vector<std::pair<CovarianceWeights, std::string>> weights{{CovarianceWeights::kRobust, "robust"},
+                                                                       {CovarianceWeights::kInliers, "inliers"}};
+  expect_key_reads<CovarianceWeights>("estimator.covariance_weights", &EstimatorConfig::covariance_weights, weights);
+  expect_key_reads<CovarianceWeights>("estimator.prior_weights", &EstimatorConfig::prior_weights, weights);
+}
+
+TEST(EstimatorConfig, OutOfRangeValuesPrintAsBefore) {
+  EXPECT_EQ(to_string(static_cast<LossKind>(9)), "?");
+  EXPECT_EQ(to_string(static_cast<LinearSolverKind>(9)), "?");
+  EXPECT_EQ(to_string(static_cast<InitializationMethod>(9)), "?");
+  EXPECT_EQ(to_string(static_cast<GpsMode>(9)), "decoupled");
+  EXPECT_EQ(to_string(static_cast<FarFeaturePolicy>(9)), "fixed");
+  EXPECT_EQ(to_string(static_cast<LeavingAnchorPolicy>(9)), "reuse");
+  EXPECT_EQ(to_string(static_cast<AnchorBearing>(9)), "estimated");
+  EXPECT_EQ(to_string(static_cast<NonKeyframeSolve>(9)), "newest");
+  EXPECT_EQ(to_string(static_cast<SchurOrdering>(9)), "auto");
+  EXPECT_EQ(to_string(static_cast<Depth3dCovariance>(9)), "paper");
 }
 
 TEST(EstimatorConfig, BadValuesNameTheKey) {
