@@ -5,21 +5,19 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
 
 namespace navaid::experiments {
 
-std::string_view to_string(GuidanceKind kind) {
-  switch (kind) {
-    case GuidanceKind::kRoute: return "route";
-    case GuidanceKind::kWalkingPath: return "walking-path";
-    case GuidanceKind::kObstacleRumble: return "obstacle-rumble";
-    case GuidanceKind::kHandTarget: return "hand-target";
-  }
-  return "?";
-}
-
 namespace {
+
+constexpr NameTable<GuidanceKind, 4> kGuidanceNames{{
+    {GuidanceKind::kRoute, "route"},
+    {GuidanceKind::kWalkingPath, "walking-path"},
+    {GuidanceKind::kObstacleRumble, "obstacle-rumble"},
+    {GuidanceKind::kHandTarget, "hand-target"},
+}};
 
 std::optional<std::pair<double, double>> optional_pair(const Config& config, const std::string& key,
                                                        Range allowed) {
@@ -30,14 +28,13 @@ std::optional<std::pair<double, double>> optional_pair(const Config& config, con
 
 }  // namespace
 
+std::string_view to_string(GuidanceKind kind) { return enum_name(kGuidanceNames, kind, "?"); }
+
 DeviceSpec read_device_spec(const Config& config) {
   DeviceSpec s;
   s.name = config.get_string("device.name");
-  const std::string guidance =
-      config.get_string("device.guidance", {"route", "walking-path", "obstacle-rumble", "hand-target"});
-  for (GuidanceKind k : {GuidanceKind::kRoute, GuidanceKind::kWalkingPath, GuidanceKind::kObstacleRumble,
-                         GuidanceKind::kHandTarget})
-    if (to_string(k) == guidance) s.guidance = k;
+  // get_string allows the table's names only, so enum_value finds every name it returns.
+  s.guidance = *enum_value(kGuidanceNames, config.get_string("device.guidance", enum_names(kGuidanceNames)));
   s.actuator = *interaction::device_kind_from_string(config.get_string("device.actuator", {"belt", "hand", "rumble", "wheel"}));
   if (config.has("device.speech")) s.speech = config.get_string("device.speech", std::string("on"), {"on", "text", "off"});
   s.needs_depth = false;

@@ -1,6 +1,10 @@
 // Device presets: the four shipped files, the device.* keys and what a recording lacks.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/device_preset.hpp"
 #include "test_support.hpp"
@@ -41,6 +45,22 @@ TEST(DevicePreset, BadKeysNameTheKey) {
             std::string::npos);
   EXPECT_NE(navaid::testing::error_message<ConfigError>([&] { parse(base + ", route: {to: [52.5]}}"); }).find("device.route.to"),
             std::string::npos);
+}
+
+TEST(DevicePreset, EveryGuidanceKindRoundTripsThroughItsName) {
+  // Every enumerator with its name; a dropped or misspelt table entry fails.
+  const std::vector<std::pair<GuidanceKind, std::string>> kinds{
+      {GuidanceKind::kRoute, "route"},
+      {GuidanceKind::kWalkingPath, "walking-path"},
+      {GuidanceKind::kObstacleRumble, "obstacle-rumble"},
+      {GuidanceKind::kHandTarget, "hand-target"},
+  };
+  for (const auto& [kind, name] : kinds) {
+    EXPECT_EQ(to_string(kind), name);
+    const std::string yaml = "device: {name: x, guidance: " + std::string(to_string(kind)) + ", actuator: belt}";
+    EXPECT_EQ(read_device_spec(Config::parse(yaml, "test.yaml")).guidance, kind) << name;
+  }
+  EXPECT_EQ(to_string(static_cast<GuidanceKind>(9)), "?");
 }
 
 TEST(DevicePreset, WhatARecordingLacksIsListed) {
