@@ -95,6 +95,13 @@ void read_obstacle_options(const Config& config, MapSessionOptions& options) {
                                                              options.obstacle_prior_camera_height_m, {0.05, 5.0});
 }
 
+MapSessionOptions read_map_session_options(const Config& config) {
+  MapSessionOptions options;
+  read_obstacle_options(config, options);
+  options.network = mapping::read_segmentation_link_config(config);
+  return options;
+}
+
 Timestamp recording_start(const io::Recording& recording) {
   std::optional<Timestamp> start;
   const auto earliest = [&start](Timestamp t) { start = start ? std::min(*start, t) : t; };

@@ -36,7 +36,6 @@
 
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/figure_script.hpp"
-#include "navaid/mapping/segmentation_link.hpp"
 
 namespace navaid::experiments {
 
@@ -145,9 +144,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   const bool mapping_enabled = !device && config.get_bool("mapping.enabled", false);
   if (device) config.get_bool("mapping.enabled", true);  // read: a preset may say so
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
-  MapSessionOptions map_options{1.0, 5.0, true, 0};
-  read_obstacle_options(config, map_options);
-  map_options.network = mapping::read_segmentation_link_config(config);
+  MapSessionOptions map_options = read_map_session_options(config);
   if (!device) config.reject_unknown_keys();  // a device's stages read theirs once the recording is known
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
     spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "

@@ -51,6 +51,9 @@ struct MapSessionOptions {
 /// mapping.obstacles.prior_camera_height_m (0.8 m), mapping.obstacles.pixel_stride (1) besides the
 /// pipeline's own keys.
 void read_obstacle_options(const Config& config, MapSessionOptions& options);
+/// The options of a map session built as the estimates come (navaid run, a device, a trial): the
+/// defaults with the obstacle options and mapping.network.* of `config`.
+MapSessionOptions read_map_session_options(const Config& config);
 
 /// Where mapping.network.outages count from: the recording's earliest IMU sample, frame, GPS fix
 /// or magnetometer sample (0 for an empty recording).
