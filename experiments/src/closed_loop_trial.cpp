@@ -21,7 +21,6 @@
 #include "navaid/experiments/experimenter.hpp"
 #include "navaid/experiments/reach_protocol.hpp"
 #include "navaid/mapping/pose_uncertainty.hpp"
-#include "navaid/mapping/segmentation_link.hpp"
 #include "navaid/planning/path_guidance.hpp"
 #include "navaid/simulation/online_sensors.hpp"
 #include "navaid/simulation/osm_export.hpp"
@@ -200,7 +199,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   if (reach_task) simulation::write_scenario_targets(scenario, out / io::kTargetsCsv);
 
   // The device: the estimator on the rig's IMU and feature observations, the full-device pipeline.
-  std::optional<runtime::EstimatorDriver> estimator;  // the rig's features: no image front end
+  std::optional<runtime::EstimatorDriver> driver;  // the rig's features: no image front end
   std::unique_ptr<DeviceRun> device_run;
   io::Recording recording;
   recording.format = "navaid";
@@ -214,11 +213,10 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   double trial_clock_s = 0;
   if (device) {
     estimation::read_frontend_config(config);  // a preset's front-end keys: the trial feeds features
-    estimator.emplace(estimation::SlidingWindowEstimator(
+    driver.emplace(estimation::SlidingWindowEstimator(
         recording.calibration, estimation::read_estimator_config(config), sim.camera.name, recording.origin));
-    MapSessionOptions map_options{1.0, 5.0, false, 0};
-    read_obstacle_options(config, map_options);
-    map_options.network = mapping::read_segmentation_link_config(config);
+    MapSessionOptions map_options = read_map_session_options(config);
+    map_options.quality = false;  // a trial scores the walk, not the map
     config.get_bool("mapping.enabled", true);
     DeviceRunOptions options;
     options.threaded = false;  // deterministic, and the person reacts to this frame's cues
@@ -393,7 +391,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         saved.groundtruth.push_back({imu.t, state.T_W_B, state.v_W, sensors->imu_model().gyro_bias(),
                                      sensors->imu_model().accel_bias()});
       }
-      std::vector<StateEstimate> estimates = estimator->process(imu);
+      std::vector<StateEstimate> estimates = driver->process(imu);
       std::optional<RgbdFrame> frame;
       FeatureFrame features;
       const bool camera_tick = t >= next_camera;
@@ -412,7 +410,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         if (auto fix = sensors->gps(state.T_W_B, t)) {
           ++gps_fixes;
           if (save_recording) saved.gps.push_back(*fix);
-          auto more = estimator->process(SensorEvent{*fix});
+          auto more = driver->process(SensorEvent{*fix});
           estimates.insert(estimates.end(), more.begin(), more.end());
         }
       }
@@ -421,12 +419,12 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
         if (auto m = sensors->mag(state.T_W_B, t)) {
           ++mag_samples;
           if (save_recording) saved.mag.push_back(*m);
-          auto more = estimator->process(SensorEvent{*m});
+          auto more = driver->process(SensorEvent{*m});
           estimates.insert(estimates.end(), more.begin(), more.end());
         }
       }
       if (camera_tick) {
-        auto more = estimator->process(features);
+        auto more = driver->process(features);
         estimates.insert(estimates.end(), more.begin(), more.end());
       }
       estimator_s += seconds_since(tp);
@@ -527,7 +525,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
                {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index},
                {"gps_fixes", gps_fixes}, {"mag_samples", mag_samples}};
   if (device) {
-    const estimation::EstimatorStatistics& es = estimator->estimator().statistics();
+    const estimation::EstimatorStatistics& es = driver->estimator().statistics();
     j["estimator"] = {{"failures", es.failures}, {"last_failure", es.last_failure}, {"restarts", es.restarts},
                       {"map_frame_resets", es.map_frame_resets}, {"gps_registrations", es.gps_registrations},
                       {"covariance_failures", es.covariance_failures}};

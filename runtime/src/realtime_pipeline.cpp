@@ -9,10 +9,12 @@
 // io::SensorEventStream), and a queued frame only when it is older than its next such event, so it
 // sees exactly replay's order and never runs ahead of the front end.
 //
-// Gyro bias. With frontend.imu_prediction the KLT prediction of frame k uses the back end's bias
-// after every event before frame k (replay's data flow), so the front end waits for the estimator
-// to get there before tracking; image loading overlaps with the estimator's work. Without the
-// prediction the front end runs ahead up to the queue's capacity.
+// Both threads go through one EstimatorDriver: the front end's thread calls track(), the
+// estimator's estimate(). Gyro bias: with frontend.imu_prediction the KLT prediction of frame k
+// uses the back end's bias after every event before frame k (replay's data flow), so the front end
+// waits for the estimator to get there before tracking (the driver hands the newest bias over);
+// image loading overlaps with the estimator's work. Without the prediction the front end runs
+// ahead up to the queue's capacity.
 //
 // Dropping (speed > 0 only). Frames arrive at start + (t - t0) / speed. A frame the front end takes
 // up after the next one has arrived is skipped (stale); a tracked frame that finds the queue full

@@ -2,6 +2,10 @@
 // replay, real time and closed-loop trials share.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
 #include <vector>
 
 #include "navaid/core/config.hpp"
@@ -130,6 +134,39 @@ TEST(GyroBiasFeedback, OnlyFromAnEstimatorThatIsTracking) {
   ASSERT_TRUE(navaid::runtime::gyro_bias_feedback({e}));
   EXPECT_EQ(*navaid::runtime::gyro_bias_feedback({e}), e.b_g);
   EXPECT_FALSE(navaid::runtime::gyro_bias_feedback({e, lost}));  // the newest one decides
+}
+
+}  // namespace
+
+namespace {
+
+TEST(EstimatorEntry, OnlyTheDriverFeedsTheEstimator) {
+  // Replay, real time, trials and device apps reach the estimator through EstimatorDriver: a
+  // second driver (an `estimator->process(...)` loop elsewhere) would miss what the driver does.
+  namespace fs = std::filesystem;
+  const fs::path root = NAVAID_SOURCE_DIR;
+  const std::regex feeds(R"(\b\w*estimator\w*\s*(\.|->)\s*(process|finish)\s*\()");
+  int files = 0;
+  for (const char* room : {"apps", "core", "io", "simulation", "mapping", "planning", "interaction", "evaluation",
+                           "runtime", "experiments", "examples"}) {
+    if (!fs::exists(root / room)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(root / room)) {
+      const std::string ext = e.path().extension().string();
+      if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp")) continue;
+      ++files;
+      if (e.path().filename() == "estimator_driver.cpp") continue;
+      std::ifstream in(e.path());
+      std::string line;
+      for (int n = 1; std::getline(in, line); ++n)
+        EXPECT_FALSE(std::regex_search(line, feeds)) << e.path().string() << ":" << n << ": " << line;
+    }
+  }
+  EXPECT_GT(files, 300);
+  // The rule itself can fail: the loops it replaced.
+  EXPECT_TRUE(std::regex_search(std::string("auto more = estimator->process(SensorEvent{*fix});"), feeds));
+  EXPECT_TRUE(std::regex_search(std::string("out = in.estimator.process(*pending);"), feeds));
+  EXPECT_TRUE(std::regex_search(std::string("for (auto& e : in.estimator.finish()) {"), feeds));
+  EXPECT_FALSE(std::regex_search(std::string("out = in.driver.estimate(*pending);"), feeds));
 }
 
 }  // namespace
