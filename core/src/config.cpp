@@ -7,9 +7,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 
+#include "navaid/core/config_schema.hpp"
 #include "navaid/core/errors.hpp"
 
 namespace navaid {
@@ -22,7 +24,21 @@ struct Config::Impl {
   // Defaults handed out for absent keys, in the order first read: dump() writes them beside the
   // given keys so that a run folder's configuration is the whole one used.
   mutable std::vector<std::pair<std::string, YAML::Node>> defaults_read;
+  // yaml-cpp's const reads are not thread-safe (size() and iteration of a map tidy a list in
+  // place), nor is read_keys: every public member takes this lock, so one Config can be read
+  // from several threads at once.
+  mutable std::recursive_mutex mutex;
+
+  Impl() = default;
+  Impl(const Impl& o)
+      : root(YAML::Clone(o.root)),
+        file(o.file),
+        override_origin(o.override_origin),
+        read_keys(o.read_keys),
+        defaults_read(o.defaults_read) {}
 };
+
+using Lock = std::lock_guard<std::recursive_mutex>;
 
 namespace {
 
@@ -133,7 +149,10 @@ T hand_out_default(std::set<std::string>& read_keys, DefaultsRead& defaults, std
 
 Config::Config() : impl_(std::make_unique<Impl>()) {}
 Config::~Config() = default;
-Config::Config(const Config& o) : impl_(std::make_unique<Impl>(*o.impl_)) { impl_->root = YAML::Clone(o.impl_->root); }
+Config::Config(const Config& o) {
+  const Lock lock(o.impl_->mutex);
+  impl_ = std::make_unique<Impl>(*o.impl_);
+}
 Config& Config::operator=(const Config& o) {
   if (this != &o) *this = Config(o);
   return *this;
@@ -166,6 +185,7 @@ Config Config::load(const std::filesystem::path& file, const std::vector<std::st
 }
 
 void Config::apply_override(const std::string& assignment) {
+  const Lock lock(impl_->mutex);
   const std::string origin = "--set " + assignment;
   const std::size_t eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -198,9 +218,13 @@ void Config::apply_override(const std::string& assignment) {
   impl_->override_origin[key] = origin;
 }
 
-bool Config::has(std::string_view key) const { return find(impl_->root, key).has_value(); }
+bool Config::has(std::string_view key) const {
+  const Lock lock(impl_->mutex);
+  return find(impl_->root, key).has_value();
+}
 
 std::string Config::origin(std::string_view key) const {
+  const Lock lock(impl_->mutex);
   // An override of a parent map also covers its children.
   std::string k(key.substr(0, key.find('[')));  // list elements come from their list's origin
   while (true) {
@@ -236,6 +260,7 @@ double checked_double(const Config& c, const YAML::Node& node, std::string_view 
 }  // namespace
 
 double Config::get_double(std::string_view key, Range allowed) const {
+  const Lock lock(impl_->mutex);
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
   if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected a number in " + range_text(allowed));
@@ -243,11 +268,13 @@ double Config::get_double(std::string_view key, Range allowed) const {
 }
 
 double Config::get_double(std::string_view key, double fallback, Range allowed) const {
+  const Lock lock(impl_->mutex);
   return has(key) ? get_double(key, allowed)
                   : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, YAML::Node(shortest(fallback)));
 }
 
 long long Config::get_int(std::string_view key, long long min, long long max) const {
+  const Lock lock(impl_->mutex);
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
   const std::string allowed = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
@@ -259,11 +286,13 @@ long long Config::get_int(std::string_view key, long long min, long long max) co
 }
 
 long long Config::get_int(std::string_view key, long long fallback, long long min, long long max) const {
+  const Lock lock(impl_->mutex);
   return has(key) ? get_int(key, min, max)
                   : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, YAML::Node(std::to_string(fallback)));
 }
 
 bool Config::get_bool(std::string_view key) const {
+  const Lock lock(impl_->mutex);
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
   if (!node) throw ConfigError(origin(key), std::string(key), "missing; expected true or false");
@@ -271,12 +300,14 @@ bool Config::get_bool(std::string_view key) const {
 }
 
 bool Config::get_bool(std::string_view key, bool fallback) const {
+  const Lock lock(impl_->mutex);
   return has(key) ? get_bool(key)
                   : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback,
                                      YAML::Node(std::string(fallback ? "true" : "false")));
 }
 
 std::string Config::get_string(std::string_view key, const std::vector<std::string>& allowed) const {
+  const Lock lock(impl_->mutex);
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
   const std::string allowed_text = allowed.empty() ? "a string" : "one of: " + join(allowed);
@@ -289,11 +320,13 @@ std::string Config::get_string(std::string_view key, const std::vector<std::stri
 
 std::string Config::get_string(std::string_view key, const std::string& fallback,
                                const std::vector<std::string>& allowed) const {
+  const Lock lock(impl_->mutex);
   return has(key) ? get_string(key, allowed)
                   : hand_out_default(impl_->read_keys, impl_->defaults_read, key, fallback, YAML::Node(fallback));
 }
 
 std::vector<double> Config::get_doubles(std::string_view key, std::size_t size, Range allowed) const {
+  const Lock lock(impl_->mutex);
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
   const std::string what = (size ? std::to_string(size) + " numbers" : std::string("a list of numbers")) + " in " + range_text(allowed);
@@ -308,6 +341,7 @@ std::vector<double> Config::get_doubles(std::string_view key, std::size_t size, 
 }
 
 std::vector<std::string> Config::get_strings(std::string_view key, const std::vector<std::string>& fallback) const {
+  const Lock lock(impl_->mutex);
   impl_->read_keys.insert(std::string(key));
   const auto node = find(impl_->root, key);
   if (!node) {
@@ -326,6 +360,7 @@ std::vector<std::string> Config::get_strings(std::string_view key, const std::ve
 }
 
 std::vector<std::string> Config::child_keys(std::string_view key) const {
+  const Lock lock(impl_->mutex);
   std::vector<std::string> out;
   const auto node = key.empty() ? std::optional<YAML::Node>(impl_->root) : find(impl_->root, key);
   if (node && node->IsMap())
@@ -334,6 +369,7 @@ std::vector<std::string> Config::child_keys(std::string_view key) const {
 }
 
 void Config::reject_unknown_keys() const {
+  const Lock lock(impl_->mutex);
   std::vector<std::string> leaves;
   collect_leaves(impl_->root, "", leaves);
   for (const auto& leaf : leaves) {
@@ -342,7 +378,42 @@ void Config::reject_unknown_keys() const {
   }
 }
 
+void Config::reject_unknown_keys(const ConfigSchema& schema) const {
+  for (const auto& leaf : leaf_keys())
+    if (!schema.declares(leaf)) throw ConfigError(origin(leaf), leaf, "unknown key (misspelt, or not used by this command)");
+}
+
+std::vector<std::string> Config::leaf_keys() const {
+  const Lock lock(impl_->mutex);
+  std::vector<std::string> leaves;
+  collect_leaves(impl_->root, "", leaves);
+  return leaves;
+}
+
+std::string Config::dump(const ConfigSchema& schema) const {
+  YAML::Node whole;
+  {
+    const Lock lock(impl_->mutex);
+    whole = YAML::Clone(impl_->root);
+  }
+  for (const auto& key : schema.keys()) {
+    if (key.is_map || key.no_default) continue;
+    if (key.list) {
+      YAML::Node list(YAML::NodeType::Sequence);
+      for (const auto& item : key.defaults) list.push_back(item);
+      insert_default(whole, key.name, list);
+    } else {
+      insert_default(whole, key.name, YAML::Node(key.defaults.front()));
+    }
+  }
+  whole.SetStyle(YAML::EmitterStyle::Block);
+  YAML::Emitter out;
+  out << whole;
+  return std::string(out.c_str()) + "\n";
+}
+
 std::string Config::dump() const {
+  const Lock lock(impl_->mutex);
   YAML::Node whole = YAML::Clone(impl_->root);
   for (const auto& [key, value] : impl_->defaults_read) insert_default(whole, key, value);
   whole.SetStyle(YAML::EmitterStyle::Block);  // "{}" plus overrides would otherwise print as one line

@@ -15,6 +15,8 @@
 
 namespace navaid {
 
+class ConfigSchema;  // navaid/core/config_schema.hpp
+
 /// Closed interval [min, max] for numeric keys.
 struct Range {
   double min;
@@ -63,9 +65,16 @@ class Config {
 
   /// Throws ConfigError naming the first leaf key that no get_* call has read.
   void reject_unknown_keys() const;
+  /// Throws ConfigError naming the first leaf key that `schema` does not declare (same message).
+  void reject_unknown_keys(const ConfigSchema& schema) const;
+
+  /// Every leaf key of the loaded tree (dotted, in file order).
+  std::vector<std::string> leaf_keys() const;
 
   /// The whole configuration as YAML (after overrides), for run folders.
   std::string dump() const;
+  /// The given keys plus the defaults of every key in `schema` that is absent.
+  std::string dump(const ConfigSchema& schema) const;
 
  private:
   struct Impl;
