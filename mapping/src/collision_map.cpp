@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 
 namespace navaid::mapping {
 
@@ -57,13 +58,28 @@ const SemanticCollisionTable& default_semantic_collision_table() {
   return table;
 }
 
+namespace {
+const ConfigKey<double> kOccupiedThreshold{"mapping.collision.occupied_threshold", CollisionConfig{}.occupied_threshold,
+                                           {0.01, 1.0}, "voxels with occupancy at or above this enter eq. (9)"};
+const ConfigKey<double> kMinRelativeHeight{"mapping.collision.min_relative_height_m",
+                                           CollisionConfig{}.min_relative_height_m, {-10.0, 10.0},
+                                           "p(m) = 1 from this height relative to the camera [m] (<= max)"};
+const ConfigKey<double> kMaxRelativeHeight{"mapping.collision.max_relative_height_m",
+                                           CollisionConfig{}.max_relative_height_m, {-10.0, 10.0},
+                                           "p(m) = 1 up to this height relative to the camera [m]"};
+const ConfigMapKey kSemanticTable{kTableKey, "probability in [0, 1] per semantic class name",
+                                  "collision probability of a class (classes not given keep their default)"};
+}  // namespace
+
+ConfigSchema collision_config_schema() {
+  return ConfigSchema().add(kOccupiedThreshold).add(kMinRelativeHeight).add(kMaxRelativeHeight).add(kSemanticTable);
+}
+
 CollisionConfig read_collision_config(const Config& config) {
   CollisionConfig c;
-  c.occupied_threshold = config.get_double("mapping.collision.occupied_threshold", c.occupied_threshold, {0.01, 1.0});
-  c.min_relative_height_m =
-      config.get_double("mapping.collision.min_relative_height_m", c.min_relative_height_m, {-10.0, 10.0});
-  c.max_relative_height_m =
-      config.get_double("mapping.collision.max_relative_height_m", c.max_relative_height_m, {-10.0, 10.0});
+  c.occupied_threshold = get(config, kOccupiedThreshold);
+  c.min_relative_height_m = get(config, kMinRelativeHeight);
+  c.max_relative_height_m = get(config, kMaxRelativeHeight);
   if (c.min_relative_height_m > c.max_relative_height_m) {
     const std::string key = "mapping.collision.min_relative_height_m";
     throw ConfigError(config.origin(key), key,

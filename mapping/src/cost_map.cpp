@@ -5,17 +5,33 @@
 #include <string>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/distance_transform.hpp"
 
 namespace navaid::mapping {
 
+namespace {
+const CostMapConfig kDefaults;
+const ConfigKey<double> kUnknownCost{"mapping.cost.unknown_cost", kDefaults.unknown_cost, {0.0, 1.0},
+                                     "cost of a cell never seen occupied or free (not free, not an obstacle)"};
+const ConfigKey<double> kObstacleThreshold{"mapping.cost.obstacle_threshold", kDefaults.obstacle_threshold, {0.0, 0.999},
+                                           "a cell is an obstacle at cost above this (eLabrador Alg. 2: 0.9)"};
+const ConfigKey<double> kInflationBase{"mapping.inflation.base_radius_m", kDefaults.inflation_base_radius_m, {0.0, 2.0},
+                                       "inflation radius at zero position uncertainty [m]"};
+const ConfigKey<double> kInflationKSigma{"mapping.inflation.k_sigma", kDefaults.inflation_k_sigma, {0.0, 10.0},
+                                         "inflation grows by this times the horizontal position sigma"};
+}  // namespace
+
+ConfigSchema cost_map_config_schema() {
+  return ConfigSchema().add(kUnknownCost).add(kObstacleThreshold).add(kInflationBase).add(kInflationKSigma);
+}
+
 CostMapConfig read_cost_map_config(const Config& config) {
   CostMapConfig c;
-  c.unknown_cost = config.get_double("mapping.cost.unknown_cost", c.unknown_cost, {0.0, 1.0});
-  c.obstacle_threshold = config.get_double("mapping.cost.obstacle_threshold", c.obstacle_threshold, {0.0, 0.999});
-  c.inflation_base_radius_m =
-      config.get_double("mapping.inflation.base_radius_m", c.inflation_base_radius_m, {0.0, 2.0});
-  c.inflation_k_sigma = config.get_double("mapping.inflation.k_sigma", c.inflation_k_sigma, {0.0, 10.0});
+  c.unknown_cost = get(config, kUnknownCost);
+  c.obstacle_threshold = get(config, kObstacleThreshold);
+  c.inflation_base_radius_m = get(config, kInflationBase);
+  c.inflation_k_sigma = get(config, kInflationKSigma);
   return c;
 }
 

@@ -1,14 +1,25 @@
 #include "navaid/mapping/height_map.hpp"
 
+#include "navaid/mapping/config_schema.hpp"
+
 #include <cmath>
 #include <limits>
 
 namespace navaid::mapping {
 
+namespace {
+const ConfigKey<double> kOccupiedThreshold{"mapping.height.occupied_threshold", HeightMapConfig{}.occupied_threshold,
+                                           {0.01, 1.0}, "a voxel is occupied at or above this probability"};
+const ConfigKey<double> kMaxAboveCamera{"mapping.height.max_above_camera_m", HeightMapConfig{}.max_above_camera_m,
+                                        {-2.0, 5.0}, "voxels higher than the camera plus this are left out [m]"};
+}  // namespace
+
+ConfigSchema height_map_config_schema() { return ConfigSchema().add(kOccupiedThreshold).add(kMaxAboveCamera); }
+
 HeightMapConfig read_height_map_config(const Config& config) {
   HeightMapConfig h;
-  h.occupied_threshold = config.get_double("mapping.height.occupied_threshold", h.occupied_threshold, {0.01, 1.0});
-  h.max_above_camera_m = config.get_double("mapping.height.max_above_camera_m", h.max_above_camera_m, {-2.0, 5.0});
+  h.occupied_threshold = get(config, kOccupiedThreshold);
+  h.max_above_camera_m = get(config, kMaxAboveCamera);
   return h;
 }
 

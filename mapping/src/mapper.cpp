@@ -1,15 +1,43 @@
 #include "navaid/mapping/mapper.hpp"
 
+#include "navaid/mapping/config_schema.hpp"
+
 #include <chrono>
 
 namespace navaid::mapping {
+
+namespace {
+const ConfigKey<bool> kLayers{"mapping.layers", MapperConfig{}.layers,
+                              "build the 2D layers and the 2D ESDF after every mapped frame (what planners read)"};
+}  // namespace
+
+ConfigSchema mapper_config_schema() {
+  return ConfigSchema()
+      .add(semantic_point_cloud_config_schema())
+      .add(semantic_map_config_schema())
+      .add(mapping_gate_config_schema())
+      .add(kLayers)
+      .add(grid_config_schema())
+      .add(height_map_config_schema())
+      .add(undulation_config_schema())
+      .add(collision_config_schema())
+      .add(cost_map_config_schema())
+      .add(esdf_2d_config_schema());
+}
+
+ConfigSchema config_schema() {
+  return mapper_config_schema()
+      .add(esdf_3d_config_schema())
+      .add(obstacle_pipeline_config_schema())
+      .add(segmentation_link_config_schema());
+}
 
 MapperConfig read_mapper_config(const Config& c) {
   MapperConfig m;
   m.cloud = read_semantic_point_cloud_config(c);
   m.map = read_semantic_map_config(c);
   m.gate = read_mapping_gate_config(c);
-  m.layers = c.get_bool("mapping.layers", m.layers);
+  m.layers = get(c, kLayers);
   m.grid = read_grid_config(c);
   m.height = read_height_map_config(c);
   m.undulation = read_undulation_config(c);

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/obstacle_pipeline.hpp"
 
 namespace navaid::mapping {
@@ -32,10 +33,6 @@ constexpr Range kBinWidthDeg{0.01, 90.0};
 void check(const std::string& key, double value, Range r) {
   if (!(value >= r.min && value <= r.max))
     throw ConfigError(kOrigin, kPrefix + key, fmt::format("{} is outside the allowed range [{}, {}]", value, r.min, r.max));
-}
-
-long long get_count(const Config& c, const std::string& key, int fallback, Range r) {
-  return c.get_int(kPrefix + key, fallback, static_cast<long long>(r.min), static_cast<long long>(r.max));
 }
 
 }  // namespace
@@ -67,30 +64,99 @@ void validate(const ObstaclePipelineConfig& c) {
                                   c.scan_min_bearing_rad / kDeg));
 }
 
+namespace {
+// Angles are in degrees in the file, radians in the struct.
+const ObstaclePipelineConfig kDefaults;
+const ConfigKey<double> kVoxelLeaf{kPrefix + "voxel_leaf_size", kDefaults.voxel_leaf_size_m, kLeaf,
+                                   "edge of the approximate voxel grid cubes [m]"};
+const ConfigKey<int> kRansacIterations{kPrefix + "ransac.max_iterations", kDefaults.ransac_max_iterations,
+                                       static_cast<int>(kIterations.min), static_cast<int>(kIterations.max),
+                                       "RANSAC iterations at most"};
+const ConfigKey<double> kRansacDistance{kPrefix + "ransac.distance_threshold", kDefaults.ransac_distance_threshold_m,
+                                        kDistance, "ground-plane inlier distance, also the step boundary [m]"};
+const ConfigKey<double> kRansacEpsAngle{kPrefix + "ransac.eps_angle", kDefaults.ransac_eps_angle_rad / kDeg,
+                                        kEpsAngleDeg, "largest angle between the plane normal and up [deg]"};
+const ConfigKey<int> kRansacMinInliers{kPrefix + "ransac.min_inliers", kDefaults.ransac_min_inliers,
+                                       static_cast<int>(kMinInliers.min), static_cast<int>(kMinInliers.max),
+                                       "fewest inliers for a RANSAC plane to count as found"};
+const ConfigKey<int> kRansacMaxPoints{kPrefix + "ransac.max_points", kDefaults.ransac_max_points,
+                                      static_cast<int>(kMaxPoints.min), static_cast<int>(kMaxPoints.max),
+                                      "RANSAC fits on at most this many points, spread over the cloud"};
+const ConfigKey<bool> kRansacOptimize{kPrefix + "ransac.optimize_coefficients", kDefaults.ransac_optimize_coefficients,
+                                      "least-squares refit of the RANSAC plane on its inliers"};
+const ConfigKey<double> kAverageDeviation{kPrefix + "running_average.max_deviation",
+                                          kDefaults.running_average_max_deviation_m, kDeviation,
+                                          "a plane whose offset differs this much from the average is false [m]"};
+const ConfigKey<int> kAverageFrames{kPrefix + "running_average.frames", kDefaults.running_average_frames,
+                                    static_cast<int>(kFrames.min), static_cast<int>(kFrames.max),
+                                    "length of the ground plane's running average [frames]"};
+const ConfigKey<double> kFallbackDistance{kPrefix + "running_average.distance_threshold",
+                                          kDefaults.fallback_distance_threshold_m, kDistance,
+                                          "inlier distance to the running-average plane [m]"};
+const ConfigKey<bool> kLevelRefinement{kPrefix + "level_refinement", kDefaults.level_refinement,
+                                       "of two ground levels a step apart, take the one under the user's feet"};
+const ConfigKey<double> kMaxStep{kPrefix + "max_step_height", kDefaults.max_step_height_m, kStep,
+                                 "highest step between two levels of ground [m]"};
+const ConfigKey<double> kLevelFit{kPrefix + "level_fit_threshold", kDefaults.level_fit_threshold_m, kDistance,
+                                  "inlier distance of the level refit [m]"};
+const ConfigKey<double> kLevelEpsAngle{kPrefix + "level_eps_angle", kDefaults.level_eps_angle_rad / kDeg, kEpsAngleDeg,
+                                       "angle tolerance of the level refit [deg]"};
+const ConfigKey<double> kAboveHeadHeight{kPrefix + "above_head_height", kDefaults.above_head_height_m, kAboveHead,
+                                   "points higher than this above the ground are ignored [m]"};
+const ConfigKey<bool> kAlignToGround{kPrefix + "align_to_ground", kDefaults.align_to_ground_plane,
+                                     "rotate the ground normal onto the user's up axis (false: the T_U_C prior as given)"};
+const ConfigKey<double> kScanMinBearing{kPrefix + "scan.min_bearing", kDefaults.scan_min_bearing_rad / kDeg,
+                                        kBearingDeg, "first bearing of the obstacle scan [deg]"};
+const ConfigKey<double> kScanMaxBearing{kPrefix + "scan.max_bearing", kDefaults.scan_max_bearing_rad / kDeg,
+                                        kBearingDeg, "last bearing of the obstacle scan [deg] (>= min_bearing)"};
+const ConfigKey<double> kScanBinWidth{kPrefix + "scan.bin_width", kDefaults.scan_bin_width_rad / kDeg, kBinWidthDeg,
+                                      "bearing bin width of the obstacle scan [deg]"};
+}  // namespace
+
+ConfigSchema obstacle_pipeline_config_schema() {
+  return ConfigSchema()
+      .add(kVoxelLeaf)
+      .add(kRansacIterations)
+      .add(kRansacDistance)
+      .add(kRansacEpsAngle)
+      .add(kRansacMinInliers)
+      .add(kRansacMaxPoints)
+      .add(kRansacOptimize)
+      .add(kAverageDeviation)
+      .add(kAverageFrames)
+      .add(kFallbackDistance)
+      .add(kLevelRefinement)
+      .add(kMaxStep)
+      .add(kLevelFit)
+      .add(kLevelEpsAngle)
+      .add(kAboveHeadHeight)
+      .add(kAlignToGround)
+      .add(kScanMinBearing)
+      .add(kScanMaxBearing)
+      .add(kScanBinWidth);
+}
+
 ObstaclePipelineConfig read_obstacle_pipeline_config(const Config& c) {
   ObstaclePipelineConfig o;
-  auto get = [&](const std::string& key, double fallback, Range r) { return c.get_double(kPrefix + key, fallback, r); };
-  o.voxel_leaf_size_m = get("voxel_leaf_size", o.voxel_leaf_size_m, kLeaf);
-  o.ransac_max_iterations = static_cast<int>(get_count(c, "ransac.max_iterations", o.ransac_max_iterations, kIterations));
-  o.ransac_distance_threshold_m = get("ransac.distance_threshold", o.ransac_distance_threshold_m, kDistance);
-  o.ransac_eps_angle_rad = kDeg * get("ransac.eps_angle", o.ransac_eps_angle_rad / kDeg, kEpsAngleDeg);
-  o.ransac_min_inliers = static_cast<int>(get_count(c, "ransac.min_inliers", o.ransac_min_inliers, kMinInliers));
-  o.ransac_max_points = static_cast<int>(get_count(c, "ransac.max_points", o.ransac_max_points, kMaxPoints));
-  o.ransac_optimize_coefficients = c.get_bool(kPrefix + "ransac.optimize_coefficients", o.ransac_optimize_coefficients);
-  o.running_average_max_deviation_m =
-      get("running_average.max_deviation", o.running_average_max_deviation_m, kDeviation);
-  o.running_average_frames = static_cast<int>(get_count(c, "running_average.frames", o.running_average_frames, kFrames));
-  o.fallback_distance_threshold_m =
-      get("running_average.distance_threshold", o.fallback_distance_threshold_m, kDistance);
-  o.level_refinement = c.get_bool(kPrefix + "level_refinement", o.level_refinement);
-  o.max_step_height_m = get("max_step_height", o.max_step_height_m, kStep);
-  o.level_fit_threshold_m = get("level_fit_threshold", o.level_fit_threshold_m, kDistance);
-  o.level_eps_angle_rad = kDeg * get("level_eps_angle", o.level_eps_angle_rad / kDeg, kEpsAngleDeg);
-  o.above_head_height_m = get("above_head_height", o.above_head_height_m, kAboveHead);
-  o.align_to_ground_plane = c.get_bool(kPrefix + "align_to_ground", o.align_to_ground_plane);
-  o.scan_min_bearing_rad = kDeg * get("scan.min_bearing", o.scan_min_bearing_rad / kDeg, kBearingDeg);
-  o.scan_max_bearing_rad = kDeg * get("scan.max_bearing", o.scan_max_bearing_rad / kDeg, kBearingDeg);
-  o.scan_bin_width_rad = kDeg * get("scan.bin_width", o.scan_bin_width_rad / kDeg, kBinWidthDeg);
+  o.voxel_leaf_size_m = get(c, kVoxelLeaf);
+  o.ransac_max_iterations = get(c, kRansacIterations);
+  o.ransac_distance_threshold_m = get(c, kRansacDistance);
+  o.ransac_eps_angle_rad = kDeg * get(c, kRansacEpsAngle);
+  o.ransac_min_inliers = get(c, kRansacMinInliers);
+  o.ransac_max_points = get(c, kRansacMaxPoints);
+  o.ransac_optimize_coefficients = get(c, kRansacOptimize);
+  o.running_average_max_deviation_m = get(c, kAverageDeviation);
+  o.running_average_frames = get(c, kAverageFrames);
+  o.fallback_distance_threshold_m = get(c, kFallbackDistance);
+  o.level_refinement = get(c, kLevelRefinement);
+  o.max_step_height_m = get(c, kMaxStep);
+  o.level_fit_threshold_m = get(c, kLevelFit);
+  o.level_eps_angle_rad = kDeg * get(c, kLevelEpsAngle);
+  o.above_head_height_m = get(c, kAboveHeadHeight);
+  o.align_to_ground_plane = get(c, kAlignToGround);
+  o.scan_min_bearing_rad = kDeg * get(c, kScanMinBearing);
+  o.scan_max_bearing_rad = kDeg * get(c, kScanMaxBearing);
+  o.scan_bin_width_rad = kDeg * get(c, kScanBinWidth);
   if (!(o.scan_max_bearing_rad >= o.scan_min_bearing_rad)) {
     const std::string key = kPrefix + (c.has(kPrefix + "scan.max_bearing") ? "scan.max_bearing" : "scan.min_bearing");
     throw ConfigError(c.origin(key), key,

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 
 namespace navaid::mapping {
 
@@ -37,14 +38,28 @@ PoseUncertainty pose_uncertainty(const StateEstimate& e) {
   return u;
 }
 
+namespace {
+const ConfigKey<double> kMaxSigmaXy{"mapping.gate.max_sigma_xy_m", MappingGateConfig{}.max_sigma_xy_m, {0.0, 100.0},
+                                    "a frame less sure than this horizontally is not mapped [m]"};
+const ConfigKey<double> kMaxSigmaYaw{"mapping.gate.max_sigma_yaw_deg",
+                                     MappingGateConfig{}.max_sigma_yaw_rad * 180.0 / M_PI, {0.0, 180.0},
+                                     "a frame less sure than this in yaw is not mapped [deg]"};
+const ConfigKey<std::string> kScope{"mapping.gate.scope", std::string("window"), {"window", "absolute"},
+                                    "gate on the uncertainty gained over the window or on the absolute one"};
+const ConfigKey<double> kWindow{"mapping.gate.window_s", MappingGateConfig{}.window_s, {0.1, 3600.0},
+                                "scope window: the span the uncertainty gain is measured over [s]"};
+}  // namespace
+
+ConfigSchema mapping_gate_config_schema() {
+  return ConfigSchema().add(kMaxSigmaXy).add(kMaxSigmaYaw).add(kScope).add(kWindow);
+}
+
 MappingGateConfig read_mapping_gate_config(const Config& c) {
   MappingGateConfig g;
-  g.max_sigma_xy_m = c.get_double("mapping.gate.max_sigma_xy_m", g.max_sigma_xy_m, {0.0, 100.0});
-  g.max_sigma_yaw_rad =
-      c.get_double("mapping.gate.max_sigma_yaw_deg", g.max_sigma_yaw_rad * 180.0 / M_PI, {0.0, 180.0}) * M_PI / 180.0;
-  g.scope = c.get_string("mapping.gate.scope", "window", {"window", "absolute"}) == "window" ? UncertaintyScope::kWindow
-                                                                                          : UncertaintyScope::kAbsolute;
-  g.window_s = c.get_double("mapping.gate.window_s", g.window_s, {0.1, 3600.0});
+  g.max_sigma_xy_m = get(c, kMaxSigmaXy);
+  g.max_sigma_yaw_rad = get(c, kMaxSigmaYaw) * M_PI / 180.0;
+  g.scope = get(c, kScope) == "window" ? UncertaintyScope::kWindow : UncertaintyScope::kAbsolute;
+  g.window_s = get(c, kWindow);
   return g;
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 
 namespace navaid::mapping {
 
@@ -44,14 +45,27 @@ void validate(const SegmentationLinkConfig& c, const std::function<std::string(c
 
 }  // namespace
 
+namespace {
+const ConfigKey<double> kPeriod{kPeriodKey, SegmentationLinkConfig{}.check_period_s, {0.01, 3600},
+                                "how often the edge probes the segmentation server [s]"};
+const ConfigKey<double> kTimeout{kTimeoutKey, SegmentationLinkConfig{}.timeout_s, {0.001, 3600},
+                                 "how long a probe waits for its reply [s] (< check_period_s)"};
+// Read by hand below (pairs, a friendlier message): declared here for the schema.
+const ConfigKey<std::vector<double>> kOutages{kOutagesKey, std::nullopt, 0, kOutageRange,
+                                              "network outages as a flat list of start_s, end_s pairs after the "
+                                              "recording start, e.g. [1.0, 2.0, 5.0, 6.5]; absent: no link"};
+}  // namespace
+
+ConfigSchema segmentation_link_config_schema() { return ConfigSchema().add(kPeriod).add(kTimeout).add(kOutages); }
+
 std::optional<SegmentationLinkConfig> read_segmentation_link_config(const Config& config) {
   SegmentationLinkConfig c;
-  c.check_period_s = config.get_double(kPeriodKey, c.check_period_s, {0.01, 3600});
-  c.timeout_s = config.get_double(kTimeoutKey, c.timeout_s, {0.001, 3600});
+  c.check_period_s = get(config, kPeriod);
+  c.timeout_s = get(config, kTimeout);
   if (!config.has(kOutagesKey)) return std::nullopt;
   std::vector<double> flat;
   try {
-    flat = config.get_doubles(kOutagesKey, 0, kOutageRange);
+    flat = get(config, kOutages);
   } catch (const ConfigError&) {
     throw ConfigError(config.origin(kOutagesKey), kOutagesKey,
                       "expected a flat list of start_s, end_s pairs in [0, 1e6] s after the recording start, e.g. "

@@ -11,27 +11,74 @@
 #include <octomap/ColorOcTree.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/semantic_octree.hpp"
 #include "flat_key_index.hpp"
 
 namespace navaid::mapping {
 
+namespace {
+const SemanticMapConfig kDefaults;
+const ConfigKey<double> kResolution{"mapping.map.resolution_m", kDefaults.resolution_m, {0.01, 1.0},
+                                    "voxel edge of the semantic map [m]"};
+const ConfigKey<std::string> kFusion{"mapping.map.fusion", std::string("max"), {"max", "bayes"},
+                                     "semantic fusion: max (eLabrador) or a Bayesian class histogram"};
+const ConfigKey<double> kMaxFusionDiscount{"mapping.map.max_fusion_discount", kDefaults.max_fusion_discount, {0.01, 1.0},
+                                           "max fusion: a disagreeing label discounts the stored confidence by this"};
+const ConfigKey<double> kProbHit{"mapping.map.prob_hit", kDefaults.prob_hit, {0.5001, 0.9999},
+                                 "OctoMap sensor model: probability of a hit"};
+const ConfigKey<double> kProbMiss{"mapping.map.prob_miss", kDefaults.prob_miss, {0.0001, 0.4999},
+                                  "OctoMap sensor model: probability of a miss"};
+const ConfigKey<double> kClampMin{"mapping.map.clamp_min", kDefaults.clamp_min, {0.0001, 0.4999},
+                                  "OctoMap clamping: lowest occupancy probability"};
+const ConfigKey<double> kClampMax{"mapping.map.clamp_max", kDefaults.clamp_max, {0.5001, 0.9999},
+                                  "OctoMap clamping: highest occupancy probability"};
+const ConfigKey<double> kOccupancyThreshold{"mapping.map.occupancy_threshold", kDefaults.occupancy_threshold, {0.01, 0.99},
+                                            "a voxel is occupied above this probability"};
+const ConfigKey<double> kWindowSize{"mapping.map.window_size_m", kDefaults.window_size_m, {1.0, 200.0},
+                                    "edge of the square map window centred on the user [m]"};
+const ConfigKey<double> kWindowBelow{"mapping.map.window_below_m", kDefaults.window_below_m, {0.0, 50.0},
+                                     "the window reaches this far below the user [m]"};
+const ConfigKey<double> kWindowAbove{"mapping.map.window_above_m", kDefaults.window_above_m, {0.0, 50.0},
+                                     "the window reaches this far above the user [m]"};
+const ConfigKey<double> kPruneStep{"mapping.map.prune_step_m", kDefaults.prune_step_m, {0.0, 100.0},
+                                   "re-prune the window once its centre moved this far [m]"};
+const ConfigKey<int> kMaintenanceInterval{"mapping.map.maintenance_interval", kDefaults.maintenance_interval, 1, 1000,
+                                          "frames between refreshes of inner nodes (OctoMap prune())"};
+}  // namespace
+
+ConfigSchema semantic_map_config_schema() {
+  return ConfigSchema()
+      .add(kResolution)
+      .add(kFusion)
+      .add(kMaxFusionDiscount)
+      .add(kProbHit)
+      .add(kProbMiss)
+      .add(kClampMin)
+      .add(kClampMax)
+      .add(kOccupancyThreshold)
+      .add(kWindowSize)
+      .add(kWindowBelow)
+      .add(kWindowAbove)
+      .add(kPruneStep)
+      .add(kMaintenanceInterval);
+}
+
 SemanticMapConfig read_semantic_map_config(const Config& c) {
   SemanticMapConfig m;
-  m.resolution_m = c.get_double("mapping.map.resolution_m", m.resolution_m, {0.01, 1.0});
-  m.fusion = c.get_string("mapping.map.fusion", "max", {"max", "bayes"}) == "max" ? FusionPolicy::kMax
-                                                                                 : FusionPolicy::kBayes;
-  m.max_fusion_discount = c.get_double("mapping.map.max_fusion_discount", m.max_fusion_discount, {0.01, 1.0});
-  m.prob_hit = c.get_double("mapping.map.prob_hit", m.prob_hit, {0.5001, 0.9999});
-  m.prob_miss = c.get_double("mapping.map.prob_miss", m.prob_miss, {0.0001, 0.4999});
-  m.clamp_min = c.get_double("mapping.map.clamp_min", m.clamp_min, {0.0001, 0.4999});
-  m.clamp_max = c.get_double("mapping.map.clamp_max", m.clamp_max, {0.5001, 0.9999});
-  m.occupancy_threshold = c.get_double("mapping.map.occupancy_threshold", m.occupancy_threshold, {0.01, 0.99});
-  m.window_size_m = c.get_double("mapping.map.window_size_m", m.window_size_m, {1.0, 200.0});
-  m.window_below_m = c.get_double("mapping.map.window_below_m", m.window_below_m, {0.0, 50.0});
-  m.window_above_m = c.get_double("mapping.map.window_above_m", m.window_above_m, {0.0, 50.0});
-  m.prune_step_m = c.get_double("mapping.map.prune_step_m", m.prune_step_m, {0.0, 100.0});
-  m.maintenance_interval = static_cast<int>(c.get_int("mapping.map.maintenance_interval", m.maintenance_interval, 1, 1000));
+  m.resolution_m = get(c, kResolution);
+  m.fusion = get(c, kFusion) == "max" ? FusionPolicy::kMax : FusionPolicy::kBayes;
+  m.max_fusion_discount = get(c, kMaxFusionDiscount);
+  m.prob_hit = get(c, kProbHit);
+  m.prob_miss = get(c, kProbMiss);
+  m.clamp_min = get(c, kClampMin);
+  m.clamp_max = get(c, kClampMax);
+  m.occupancy_threshold = get(c, kOccupancyThreshold);
+  m.window_size_m = get(c, kWindowSize);
+  m.window_below_m = get(c, kWindowBelow);
+  m.window_above_m = get(c, kWindowAbove);
+  m.prune_step_m = get(c, kPruneStep);
+  m.maintenance_interval = get(c, kMaintenanceInterval);
   return m;
 }
 

@@ -8,18 +8,38 @@
 
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 
 namespace navaid::mapping {
 
+namespace {
+const SemanticPointCloudConfig kDefaults;
+const ConfigKey<int> kPixelStride{"mapping.cloud.pixel_stride", kDefaults.pixel_stride, 1, 64,
+                                  "map every n-th pixel in u and v"};
+const ConfigKey<double> kDepthMin{"mapping.cloud.depth_min_m", kDefaults.depth_min_m, {0.0, 100.0},
+                                  "nearer depths are sensor artefacts [m]"};
+const ConfigKey<double> kDepthMax{"mapping.cloud.depth_max_m", kDefaults.depth_max_m, {0.01, 100.0},
+                                  "farther depths are too noisy to map [m] (> depth_min_m)"};
+const ConfigKey<std::vector<std::string>> kIgnoredClasses{"mapping.cloud.ignored_classes", {"sky"},
+                                                          "semantic classes whose points are dropped, e.g. [sky, person]"};
+const ConfigKey<double> kDefaultLabelProbability{"mapping.cloud.default_label_probability",
+                                                 kDefaults.default_label_probability, {0.0, 1.0},
+                                                 "class probability of a labelled pixel without a confidence image"};
+}  // namespace
+
+ConfigSchema semantic_point_cloud_config_schema() {
+  return ConfigSchema().add(kPixelStride).add(kDepthMin).add(kDepthMax).add(kIgnoredClasses).add(kDefaultLabelProbability);
+}
+
 SemanticPointCloudConfig read_semantic_point_cloud_config(const Config& c) {
   SemanticPointCloudConfig out;
-  out.pixel_stride = static_cast<int>(c.get_int("mapping.cloud.pixel_stride", out.pixel_stride, 1, 64));
-  out.depth_min_m = c.get_double("mapping.cloud.depth_min_m", out.depth_min_m, {0.0, 100.0});
-  out.depth_max_m = c.get_double("mapping.cloud.depth_max_m", out.depth_max_m, {0.01, 100.0});
+  out.pixel_stride = get(c, kPixelStride);
+  out.depth_min_m = get(c, kDepthMin);
+  out.depth_max_m = get(c, kDepthMax);
   if (out.depth_max_m <= out.depth_min_m)
     throw ConfigError(c.origin("mapping.cloud.depth_max_m"), "mapping.cloud.depth_max_m",
                       "must exceed mapping.cloud.depth_min_m (" + std::to_string(out.depth_min_m) + ")");
-  const auto names = c.get_strings("mapping.cloud.ignored_classes", {"sky"});
+  const auto names = get(c, kIgnoredClasses);
   out.ignored_classes.clear();
   for (const auto& name : names) {
     try {
@@ -28,8 +48,7 @@ SemanticPointCloudConfig read_semantic_point_cloud_config(const Config& c) {
       throw ConfigError(c.origin("mapping.cloud.ignored_classes"), "mapping.cloud.ignored_classes", e.what());
     }
   }
-  out.default_label_probability =
-      c.get_double("mapping.cloud.default_label_probability", out.default_label_probability, {0.0, 1.0});
+  out.default_label_probability = get(c, kDefaultLabelProbability);
   return out;
 }
 

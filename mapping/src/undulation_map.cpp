@@ -1,12 +1,21 @@
 #include "navaid/mapping/undulation_map.hpp"
 
+#include "navaid/mapping/config_schema.hpp"
+
 #include <cmath>
 
 namespace navaid::mapping {
 
+namespace {
+const ConfigKey<double> kStepThreshold{"mapping.undulation.step_threshold_m", UndulationConfig{}.step_threshold_m,
+                                       {0.01, 2.0}, "a cell undulates when its Sobel edge degree exceeds this [m]"};
+}  // namespace
+
+ConfigSchema undulation_config_schema() { return ConfigSchema().add(kStepThreshold); }
+
 UndulationConfig read_undulation_config(const Config& config) {
   UndulationConfig u;
-  u.step_threshold_m = config.get_double("mapping.undulation.step_threshold_m", u.step_threshold_m, {0.01, 2.0});
+  u.step_threshold_m = get(config, kStepThreshold);
   return u;
 }
 
