@@ -11,6 +11,7 @@
 #include <visp3/detection/vpDetectorAprilTag.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
@@ -36,13 +37,30 @@ Eigen::Vector2d diagonal_intersection(const std::array<Eigen::Vector2d, 4>& c) {
 
 }  // namespace
 
+namespace {
+const AprilTagDetectorConfig kDefaults;
+const ConfigKey<std::string> kFamily{"planning.apriltag.family", kDefaults.family, {"36h11", "25h9", "16h5"},
+                                     "AprilTag family"};
+const ConfigKey<double> kQuadDecimate{"planning.apriltag.quad_decimate", kDefaults.quad_decimate, {1.0, 8.0},
+                                      "> 1 detects quads on a decimated image: faster, shorter range"};
+const ConfigKey<double> kQuadSigma{"planning.apriltag.quad_sigma", kDefaults.quad_sigma, {0.0, 5.0},
+                                   "Gaussian blur before quad detection [px]"};
+const ConfigKey<int> kThreads{"planning.apriltag.threads", kDefaults.threads, 1, 64, "AprilTag detector threads"};
+const ConfigKey<double> kTagSize{"planning.apriltag.tag_size_m", kDefaults.tag_size_m, {0.0, 10.0},
+                                 "black-square side of the tags [m]; > 0 estimates the tag's pose"};
+}  // namespace
+
+ConfigSchema apriltag_detector_config_schema() {
+  return ConfigSchema().add(kFamily).add(kQuadDecimate).add(kQuadSigma).add(kThreads).add(kTagSize);
+}
+
 AprilTagDetectorConfig read_apriltag_detector_config(const Config& config) {
   AprilTagDetectorConfig c;
-  c.family = config.get_string("planning.apriltag.family", c.family, {"36h11", "25h9", "16h5"});
-  c.quad_decimate = config.get_double("planning.apriltag.quad_decimate", c.quad_decimate, {1.0, 8.0});
-  c.quad_sigma = config.get_double("planning.apriltag.quad_sigma", c.quad_sigma, {0.0, 5.0});
-  c.threads = static_cast<int>(config.get_int("planning.apriltag.threads", c.threads, 1, 64));
-  c.tag_size_m = config.get_double("planning.apriltag.tag_size_m", c.tag_size_m, {0.0, 10.0});
+  c.family = get(config, kFamily);
+  c.quad_decimate = get(config, kQuadDecimate);
+  c.quad_sigma = get(config, kQuadSigma);
+  c.threads = get(config, kThreads);
+  c.tag_size_m = get(config, kTagSize);
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
@@ -66,23 +67,65 @@ std::optional<ByuCostFunction> byu_cost_function_from_string(std::string_view na
   return enum_value(kFunctionNames, name);
 }
 
+namespace {
+const ByuCostConfig kDefaults;
+const ConfigKey<double> kFicfWidth{"planning.byu.ficf.width_m", kDefaults.ficf.width_m, {0.01, 10.0},
+                                   "FICF: width w of the intended user path [m]"};
+const ConfigKey<double> kFicfDistance{"planning.byu.ficf.distance_m", kDefaults.ficf.distance_m, {0.05, 20.0},
+                                      "FICF: distance d of the intended path (side costs only below it) [m]"};
+const ConfigKey<double> kFicfForward{"planning.byu.ficf.forward_threshold", kDefaults.ficf.thresholds.forward,
+                                     {0.0, 1e6}, "FICF: forward cost threshold of a rumble"};
+const ConfigKey<double> kFicfLeftRight{"planning.byu.ficf.left_right_threshold", kDefaults.ficf.thresholds.left_right,
+                                       {0.0, 1e6}, "FICF: left / right cost threshold of a rumble"};
+const ConfigKey<double> kCacfWidth{"planning.byu.cacf.width_m", kDefaults.cacf.width_m, {0.01, 10.0},
+                                   "CACF: width w of the intended path (lower safety cushion) [m]"};
+const ConfigKey<double> kCacfDistance{"planning.byu.cacf.distance_m", kDefaults.cacf.distance_m, {0.05, 20.0},
+                                      "CACF: distance d of the intended path [m]"};
+const ConfigKey<double> kCacfCushionWidth{"planning.byu.cacf.cushion_width_m", kDefaults.cacf.cushion_width_m,
+                                          {0.01, 20.0}, "CACF: width of the upper safety cushion [m] (>= width_m)"};
+const ConfigKey<double> kCacfCushionDistance{"planning.byu.cacf.cushion_distance_m", kDefaults.cacf.cushion_distance_m,
+                                             {0.05, 20.0}, "CACF: distance of the upper safety cushion [m] (>= "
+                                                           "distance_m)"};
+const ConfigKey<double> kCacfForward{"planning.byu.cacf.forward_threshold", kDefaults.cacf.thresholds.forward,
+                                     {0.0, 1e6}, "CACF: forward cost threshold of a rumble"};
+const ConfigKey<double> kCacfLeftRight{"planning.byu.cacf.left_right_threshold", kDefaults.cacf.thresholds.left_right,
+                                       {0.0, 1e6}, "CACF: left / right cost threshold of a rumble"};
+const ConfigKey<double> kMaxBearing{"planning.byu.max_bearing_deg", rad_to_deg(kDefaults.max_bearing_rad), {1.0, 89.0},
+                                    "scan bins beyond this bearing are ignored; e of eq. 2.13 [deg]"};
+const ConfigKey<bool> kDropOffs{"planning.byu.drop_offs_are_obstacles", kDefaults.drop_offs_are_obstacles,
+                                "drop-offs (kerbs stepped down) count as obstacles"};
+}  // namespace
+
+ConfigSchema byu_cost_config_schema() {
+  return ConfigSchema()
+      .add(kFicfWidth)
+      .add(kFicfDistance)
+      .add(kFicfForward)
+      .add(kFicfLeftRight)
+      .add(kCacfWidth)
+      .add(kCacfDistance)
+      .add(kCacfCushionWidth)
+      .add(kCacfCushionDistance)
+      .add(kCacfForward)
+      .add(kCacfLeftRight)
+      .add(kMaxBearing)
+      .add(kDropOffs);
+}
+
 ByuCostConfig read_byu_cost_config(const Config& config) {
   ByuCostConfig c;
-  const auto get = [&](const char* key, double fallback, Range range) { return config.get_double(key, fallback, range); };
-  c.ficf.width_m = get("planning.byu.ficf.width_m", c.ficf.width_m, {0.01, 10.0});
-  c.ficf.distance_m = get("planning.byu.ficf.distance_m", c.ficf.distance_m, {0.05, 20.0});
-  c.ficf.thresholds.forward = get("planning.byu.ficf.forward_threshold", c.ficf.thresholds.forward, {0.0, 1e6});
-  c.ficf.thresholds.left_right =
-      get("planning.byu.ficf.left_right_threshold", c.ficf.thresholds.left_right, {0.0, 1e6});
-  c.cacf.width_m = get("planning.byu.cacf.width_m", c.cacf.width_m, {0.01, 10.0});
-  c.cacf.distance_m = get("planning.byu.cacf.distance_m", c.cacf.distance_m, {0.05, 20.0});
-  c.cacf.cushion_width_m = get("planning.byu.cacf.cushion_width_m", c.cacf.cushion_width_m, {0.01, 20.0});
-  c.cacf.cushion_distance_m = get("planning.byu.cacf.cushion_distance_m", c.cacf.cushion_distance_m, {0.05, 20.0});
-  c.cacf.thresholds.forward = get("planning.byu.cacf.forward_threshold", c.cacf.thresholds.forward, {0.0, 1e6});
-  c.cacf.thresholds.left_right =
-      get("planning.byu.cacf.left_right_threshold", c.cacf.thresholds.left_right, {0.0, 1e6});
-  c.max_bearing_rad = deg_to_rad(get("planning.byu.max_bearing_deg", rad_to_deg(c.max_bearing_rad), {1.0, 89.0}));
-  c.drop_offs_are_obstacles = config.get_bool("planning.byu.drop_offs_are_obstacles", c.drop_offs_are_obstacles);
+  c.ficf.width_m = get(config, kFicfWidth);
+  c.ficf.distance_m = get(config, kFicfDistance);
+  c.ficf.thresholds.forward = get(config, kFicfForward);
+  c.ficf.thresholds.left_right = get(config, kFicfLeftRight);
+  c.cacf.width_m = get(config, kCacfWidth);
+  c.cacf.distance_m = get(config, kCacfDistance);
+  c.cacf.cushion_width_m = get(config, kCacfCushionWidth);
+  c.cacf.cushion_distance_m = get(config, kCacfCushionDistance);
+  c.cacf.thresholds.forward = get(config, kCacfForward);
+  c.cacf.thresholds.left_right = get(config, kCacfLeftRight);
+  c.max_bearing_rad = deg_to_rad(get(config, kMaxBearing));
+  c.drop_offs_are_obstacles = get(config, kDropOffs);
 
   const auto origin = [&](const char* key) { return config.has(key) ? config.origin(key) : std::string("<defaults>"); };
   check_path(origin("planning.byu.ficf.width_m"), "planning.byu.ficf.width_m", c.ficf.width_m, c.ficf.distance_m);

@@ -6,16 +6,31 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/grid_endpoints.hpp"
 
 namespace navaid::planning {
 
+namespace {
+const DirectionAStarConfig kDefaults;
+const ConfigKey<int> kNumTargets{"planning.direction_astar.num_targets", kDefaults.num_targets, 1, 1000,
+                                 "n_s: boundary targets of Direction A* (one per 10 deg by default)"};
+const ConfigKey<double> kBeta{"planning.direction_astar.beta", kDefaults.beta, {0.0, 1e4},
+                              "weight of Direction A*'s direction term [cost units]"};
+const ConfigKey<double> kWindow{"planning.direction_astar.window_m", kDefaults.window_m, {1.0, 1000.0},
+                                "edge of Direction A*'s local window [m]"};
+}  // namespace
+
+ConfigSchema direction_astar_config_schema() {
+  return grid_astar_config_schema().add(kNumTargets).add(kBeta).add(kWindow);
+}
+
 DirectionAStarConfig read_direction_astar_config(const Config& config) {
   DirectionAStarConfig c;
   c.grid = read_grid_astar_config(config);
-  c.num_targets = static_cast<int>(config.get_int("planning.direction_astar.num_targets", c.num_targets, 1, 1000));
-  c.beta = config.get_double("planning.direction_astar.beta", c.beta, {0.0, 1e4});
-  c.window_m = config.get_double("planning.direction_astar.window_m", c.window_m, {1.0, 1000.0});
+  c.num_targets = get(config, kNumTargets);
+  c.beta = get(config, kBeta);
+  c.window_m = get(config, kWindow);
   return c;
 }
 

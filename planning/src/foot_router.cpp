@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "navaid/planning/best_first_search.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
@@ -125,29 +126,86 @@ bool valid_lat_lon(const GeoPoint& p) {
          std::abs(p.lon_deg) <= 180.0;
 }
 
+namespace {
+const FootRouteConfig kDefaults;
+const ConfigKey<double> kSidewalkFactor{"planning.route.sidewalk_factor", kDefaults.sidewalk_factor, {1.0, 100.0},
+    "cost factor of a sidewalk"};
+const ConfigKey<double> kFootwayFactor{"planning.route.footway_factor", kDefaults.footway_factor, {1.0, 100.0},
+    "cost factor of a footway, path or pedestrian way"};
+const ConfigKey<double> kCrossingWayFactor{"planning.route.crossing_way_factor", kDefaults.crossing_way_factor, {1.0, 100.0},
+    "cost factor of the length of a footway=crossing"};
+const ConfigKey<double> kRoadSidewalkFactor{"planning.route.road_sidewalk_factor", kDefaults.road_sidewalk_factor, {1.0, 100.0},
+    "cost factor of a road with a sidewalk=* tag"};
+const ConfigKey<double> kRoadFactor{"planning.route.road_factor", kDefaults.road_factor, {1.0, 100.0},
+    "cost factor of a road without a sidewalk"};
+const ConfigKey<double> kStepsFactor{"planning.route.steps_factor", kDefaults.steps_factor, {1.0, 100.0},
+    "cost factor of steps"};
+const ConfigKey<double> kAvoidStepsFactor{"planning.route.avoid_steps_factor", kDefaults.avoid_steps_factor, {1.0, 1e4},
+    "avoid_steps: steps cost this factor more"};
+const ConfigKey<double> kCrossingSignalsM{"planning.route.crossing_signals_m", kDefaults.crossing_signals_m, {0.0, 1e4},
+    "penalty of a signalled crossing [m]"};
+const ConfigKey<double> kCrossingMarkedM{"planning.route.crossing_marked_m", kDefaults.crossing_marked_m, {0.0, 1e4},
+    "penalty of a marked (zebra) crossing [m]"};
+const ConfigKey<double> kCrossingUncontrolledM{"planning.route.crossing_uncontrolled_m", kDefaults.crossing_uncontrolled_m, {0.0, 1e4},
+    "penalty of an uncontrolled crossing [m]"};
+const ConfigKey<double> kCrossingUnmarkedM{"planning.route.crossing_unmarked_m", kDefaults.crossing_unmarked_m, {0.0, 1e4},
+    "penalty of an unmarked crossing [m]"};
+const ConfigKey<double> kCrossingUnknownM{"planning.route.crossing_unknown_m", kDefaults.crossing_unknown_m, {0.0, 1e4},
+    "penalty of a crossing of unknown control [m]"};
+const ConfigKey<double> kTactileFactor{"planning.route.tactile_factor", kDefaults.tactile_factor, {0.0, 1.0},
+    "tactile paving multiplies a crossing's penalty by this"};
+const ConfigKey<double> kMaxSnapM{"planning.route.max_snap_m", kDefaults.max_snap_m, {0.1, 1e4},
+    "a point farther than this from every edge is off the graph [m]"};
+const ConfigKey<double> kMaxTimeS{"planning.route.max_time_s", kDefaults.max_time_s, {0.0, 3600.0},
+    "wall-clock limit of a route search [s]; 0 = none"};
+const ConfigKey<bool> kAvoidSteps{"planning.route.avoid_steps", kDefaults.avoid_steps,
+    "steps cost avoid_steps_factor times more"};
+const ConfigKey<long long> kMaxExpansions{"planning.route.max_expansions",
+                                          static_cast<long long>(kDefaults.max_expansions), 1, 1'000'000'000,
+                                          "a route search stops after this many expansions"};
+}  // namespace
+
+ConfigSchema foot_route_config_schema() {
+  ConfigSchema s;
+  s.add(kSidewalkFactor);
+  s.add(kFootwayFactor);
+  s.add(kCrossingWayFactor);
+  s.add(kRoadSidewalkFactor);
+  s.add(kRoadFactor);
+  s.add(kStepsFactor);
+  s.add(kAvoidSteps);
+  s.add(kAvoidStepsFactor);
+  s.add(kCrossingSignalsM);
+  s.add(kCrossingMarkedM);
+  s.add(kCrossingUncontrolledM);
+  s.add(kCrossingUnmarkedM);
+  s.add(kCrossingUnknownM);
+  s.add(kTactileFactor);
+  s.add(kMaxSnapM);
+  s.add(kMaxExpansions);
+  s.add(kMaxTimeS);
+  return s;
+}
+
 FootRouteConfig foot_route_config(const Config& config) {
   FootRouteConfig c;
-  const auto get = [&](const char* key, double fallback, Range range) {
-    return config.get_double(std::string("planning.route.") + key, fallback, range);
-  };
-  c.sidewalk_factor = get("sidewalk_factor", c.sidewalk_factor, {1.0, 100.0});
-  c.footway_factor = get("footway_factor", c.footway_factor, {1.0, 100.0});
-  c.crossing_way_factor = get("crossing_way_factor", c.crossing_way_factor, {1.0, 100.0});
-  c.road_sidewalk_factor = get("road_sidewalk_factor", c.road_sidewalk_factor, {1.0, 100.0});
-  c.road_factor = get("road_factor", c.road_factor, {1.0, 100.0});
-  c.steps_factor = get("steps_factor", c.steps_factor, {1.0, 100.0});
-  c.avoid_steps = config.get_bool("planning.route.avoid_steps", c.avoid_steps);
-  c.avoid_steps_factor = get("avoid_steps_factor", c.avoid_steps_factor, {1.0, 1e4});
-  c.crossing_signals_m = get("crossing_signals_m", c.crossing_signals_m, {0.0, 1e4});
-  c.crossing_marked_m = get("crossing_marked_m", c.crossing_marked_m, {0.0, 1e4});
-  c.crossing_uncontrolled_m = get("crossing_uncontrolled_m", c.crossing_uncontrolled_m, {0.0, 1e4});
-  c.crossing_unmarked_m = get("crossing_unmarked_m", c.crossing_unmarked_m, {0.0, 1e4});
-  c.crossing_unknown_m = get("crossing_unknown_m", c.crossing_unknown_m, {0.0, 1e4});
-  c.tactile_factor = get("tactile_factor", c.tactile_factor, {0.0, 1.0});
-  c.max_snap_m = get("max_snap_m", c.max_snap_m, {0.1, 1e4});
-  c.max_expansions = static_cast<std::size_t>(
-      config.get_int("planning.route.max_expansions", static_cast<long long>(c.max_expansions), 1, 1'000'000'000));
-  c.max_time_s = get("max_time_s", c.max_time_s, {0.0, 3600.0});
+  c.sidewalk_factor = get(config, kSidewalkFactor);
+  c.footway_factor = get(config, kFootwayFactor);
+  c.crossing_way_factor = get(config, kCrossingWayFactor);
+  c.road_sidewalk_factor = get(config, kRoadSidewalkFactor);
+  c.road_factor = get(config, kRoadFactor);
+  c.steps_factor = get(config, kStepsFactor);
+  c.avoid_steps = get(config, kAvoidSteps);
+  c.avoid_steps_factor = get(config, kAvoidStepsFactor);
+  c.crossing_signals_m = get(config, kCrossingSignalsM);
+  c.crossing_marked_m = get(config, kCrossingMarkedM);
+  c.crossing_uncontrolled_m = get(config, kCrossingUncontrolledM);
+  c.crossing_unmarked_m = get(config, kCrossingUnmarkedM);
+  c.crossing_unknown_m = get(config, kCrossingUnknownM);
+  c.tactile_factor = get(config, kTactileFactor);
+  c.max_snap_m = get(config, kMaxSnapM);
+  c.max_expansions = static_cast<std::size_t>(get(config, kMaxExpansions));
+  c.max_time_s = get(config, kMaxTimeS);
   return c;
 }
 

@@ -1,9 +1,12 @@
 #include "navaid/planning/grid_astar.hpp"
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/grid_endpoints.hpp"
 
 namespace navaid::planning {
+
+ConfigSchema grid_astar_config_schema() { return grid_cost_config_schema().add(search_limits_schema()); }
 
 GridAStarConfig read_grid_astar_config(const Config& config) {
   return GridAStarConfig{read_grid_cost_config(config), read_search_limits(config)};

@@ -1,5 +1,7 @@
 #include "navaid/planning/grid_search_space.hpp"
 
+#include "navaid/planning/config_schema.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -7,12 +9,28 @@
 
 namespace navaid::planning {
 
+namespace {
+const GridCostConfig kDefaults;
+const ConfigKey<double> kLengthWeight{"planning.grid.length_weight", kDefaults.length_weight, {1e-6, 100.0},
+                                      "alpha: grid search cost per metre walked"};
+const ConfigKey<double> kCostWeight{"planning.grid.cost_weight", kDefaults.cost_weight, {0.0, 100.0},
+                                    "w_c: weight of the map cost integral in the grid search"};
+const ConfigKey<double> kBaseClearance{"planning.grid.base_clearance_m", kDefaults.base_clearance_m, {0.0, 2.0},
+                                       "cells nearer than this (plus k sigma) to an obstacle are blocked [m]"};
+const ConfigKey<double> kClearanceKSigma{"planning.grid.clearance_k_sigma", kDefaults.clearance_k_sigma, {0.0, 10.0},
+                                         "the grid clearance grows by this times the horizontal position sigma"};
+}  // namespace
+
+ConfigSchema grid_cost_config_schema() {
+  return ConfigSchema().add(kLengthWeight).add(kCostWeight).add(kBaseClearance).add(kClearanceKSigma);
+}
+
 GridCostConfig read_grid_cost_config(const Config& config) {
   GridCostConfig c;
-  c.length_weight = config.get_double("planning.grid.length_weight", c.length_weight, {1e-6, 100.0});
-  c.cost_weight = config.get_double("planning.grid.cost_weight", c.cost_weight, {0.0, 100.0});
-  c.base_clearance_m = config.get_double("planning.grid.base_clearance_m", c.base_clearance_m, {0.0, 2.0});
-  c.clearance_k_sigma = config.get_double("planning.grid.clearance_k_sigma", c.clearance_k_sigma, {0.0, 10.0});
+  c.length_weight = get(config, kLengthWeight);
+  c.cost_weight = get(config, kCostWeight);
+  c.base_clearance_m = get(config, kBaseClearance);
+  c.clearance_k_sigma = get(config, kClearanceKSigma);
   return c;
 }
 

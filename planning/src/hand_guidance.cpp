@@ -10,6 +10,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/mapping/pose_uncertainty.hpp"
 #include "navaid/planning/angles.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
@@ -77,21 +78,53 @@ DepthPatchStats depth_patch_stats(const ImageF32& depth, const Eigen::Vector2d& 
   return s;
 }
 
+namespace {
+const HandGuidanceConfig kDefaults;
+const ConfigKey<int> kPatchHalf{"planning.hand.patch_half_px", kDefaults.patch_half_px, 0, 50,
+                                "half-size of the depth patch around a detection's centre [px]"};
+const ConfigKey<double> kMinValidFraction{"planning.hand.min_valid_fraction", kDefaults.min_valid_fraction, {1e-6, 1.0},
+                                          "fewest valid depth pixels in the patch, as a fraction"};
+const ConfigKey<double> kPixelSigma{"planning.hand.pixel_sigma_px", kDefaults.pixel_sigma_px, {0.0, 20.0},
+                                    "noise of a detection's centre [px]"};
+const ConfigKey<double> kMinDepthSigma{"planning.hand.min_depth_sigma_m", kDefaults.min_depth_sigma_m, {0.0, 1.0},
+                                       "floor on the target's depth sigma [m]"};
+const ConfigKey<double> kMaxHeadingSigma{"planning.hand.max_heading_sigma_deg", rad_to_deg(kDefaults.max_heading_sigma_rad),
+                                         {0.1, 180.0}, "hand guidance waits while the heading sigma exceeds this [deg]"};
+const ConfigKey<double> kMaxPositionSigma{"planning.hand.max_position_sigma_m", kDefaults.max_position_sigma_m,
+                                          {0.001, 100.0}, "hand guidance waits while the position sigma exceeds this [m]"};
+const ConfigKey<double> kMaxTargetSigma{"planning.hand.max_target_sigma_m", kDefaults.max_target_sigma_m, {0.001, 100.0},
+                                        "hand guidance waits while the target's lateral sigma exceeds this [m]"};
+const ConfigKey<double> kConfidenceSigma{"planning.hand.confidence_sigma_m", kDefaults.confidence_sigma_m,
+                                         {0.001, 100.0}, "hand guidance confidence falls to 0 at this lateral sigma [m]"};
+const ConfigKey<std::string> kScope{"planning.hand.scope", std::string("since-seen"), {"since-seen", "absolute"},
+                                    "judge the uncertainty gained since the target was seen or the absolute one"};
+}  // namespace
+
+ConfigSchema hand_guidance_config_schema() {
+  return hand_sector_config_schema()
+      .add(kPatchHalf)
+      .add(kMinValidFraction)
+      .add(kPixelSigma)
+      .add(kMinDepthSigma)
+      .add(kMaxHeadingSigma)
+      .add(kMaxPositionSigma)
+      .add(kMaxTargetSigma)
+      .add(kConfidenceSigma)
+      .add(kScope);
+}
+
 HandGuidanceConfig read_hand_guidance_config(const Config& config) {
   HandGuidanceConfig c;
   c.sector = read_hand_sector_config(config);
-  c.patch_half_px = static_cast<int>(config.get_int("planning.hand.patch_half_px", c.patch_half_px, 0, 50));
-  c.min_valid_fraction = config.get_double("planning.hand.min_valid_fraction", c.min_valid_fraction, {1e-6, 1.0});
-  c.pixel_sigma_px = config.get_double("planning.hand.pixel_sigma_px", c.pixel_sigma_px, {0.0, 20.0});
-  c.min_depth_sigma_m = config.get_double("planning.hand.min_depth_sigma_m", c.min_depth_sigma_m, {0.0, 1.0});
-  c.max_heading_sigma_rad = deg_to_rad(
-      config.get_double("planning.hand.max_heading_sigma_deg", rad_to_deg(c.max_heading_sigma_rad), {0.1, 180.0}));
-  c.max_position_sigma_m =
-      config.get_double("planning.hand.max_position_sigma_m", c.max_position_sigma_m, {0.001, 100.0});
-  c.max_target_sigma_m = config.get_double("planning.hand.max_target_sigma_m", c.max_target_sigma_m, {0.001, 100.0});
-  c.confidence_sigma_m = config.get_double("planning.hand.confidence_sigma_m", c.confidence_sigma_m, {0.001, 100.0});
-  const std::string scope = config.get_string("planning.hand.scope", "since-seen", {"since-seen", "absolute"});
-  c.scope = scope == "since-seen" ? HandGuidanceScope::kSinceSeen : HandGuidanceScope::kAbsolute;
+  c.patch_half_px = get(config, kPatchHalf);
+  c.min_valid_fraction = get(config, kMinValidFraction);
+  c.pixel_sigma_px = get(config, kPixelSigma);
+  c.min_depth_sigma_m = get(config, kMinDepthSigma);
+  c.max_heading_sigma_rad = deg_to_rad(get(config, kMaxHeadingSigma));
+  c.max_position_sigma_m = get(config, kMaxPositionSigma);
+  c.max_target_sigma_m = get(config, kMaxTargetSigma);
+  c.confidence_sigma_m = get(config, kConfidenceSigma);
+  c.scope = get(config, kScope) == "since-seen" ? HandGuidanceScope::kSinceSeen : HandGuidanceScope::kAbsolute;
   return c;
 }
 

@@ -5,15 +5,26 @@
 #include <cmath>
 
 #include "navaid/planning/angles.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
+namespace {
+const ConfigKey<double> kAlignedRadius{"planning.hand.aligned_radius_m", HandSectorConfig{}.aligned_radius_m,
+                                       {0.005, 1.0}, "lateral offset counted as aligned near the object [m]"};
+const ConfigKey<double> kAlignedAngle{"planning.hand.aligned_angle_deg", rad_to_deg(HandSectorConfig{}.aligned_angle_rad),
+                                      {0.1, 45.0}, "half-angle of the aligned cone far from the object [deg]"};
+const ConfigKey<double> kReachDistance{"planning.hand.reach_distance_m", HandSectorConfig{}.reach_distance_m,
+                                       {0.0, 1.0}, "aligned and nearer than this: the hand is at the object [m]"};
+}  // namespace
+
+ConfigSchema hand_sector_config_schema() { return ConfigSchema().add(kAlignedRadius).add(kAlignedAngle).add(kReachDistance); }
+
 HandSectorConfig read_hand_sector_config(const Config& config) {
   HandSectorConfig c;
-  c.aligned_radius_m = config.get_double("planning.hand.aligned_radius_m", c.aligned_radius_m, {0.005, 1.0});
-  c.aligned_angle_rad =
-      deg_to_rad(config.get_double("planning.hand.aligned_angle_deg", rad_to_deg(c.aligned_angle_rad), {0.1, 45.0}));
-  c.reach_distance_m = config.get_double("planning.hand.reach_distance_m", c.reach_distance_m, {0.0, 1.0});
+  c.aligned_radius_m = get(config, kAlignedRadius);
+  c.aligned_angle_rad = deg_to_rad(get(config, kAlignedAngle));
+  c.reach_distance_m = get(config, kReachDistance);
   return c;
 }
 

@@ -3,18 +3,53 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/direction_astar.hpp"
 #include "navaid/planning/grid_astar.hpp"
 #include "navaid/planning/wpg_planner.hpp"
 
 namespace navaid::planning {
 
+namespace {
+const ConfigKey<long long> kMaxExpansions{"planning.search.max_expansions",
+                                          static_cast<long long>(SearchLimits{}.max_expansions), 1, 1'000'000'000,
+                                          "a search stops after taking this many nodes off its open list"};
+const ConfigKey<double> kMaxTime{"planning.search.max_time_s", SearchLimits{}.max_time_s, {0.0, 3600.0},
+                                 "wall-clock limit of a search [s]; 0 = none (replay stays deterministic)"};
+}  // namespace
+
+ConfigSchema search_limits_schema() { return ConfigSchema().add(kMaxExpansions).add(kMaxTime); }
+
 SearchLimits read_search_limits(const Config& config) {
   SearchLimits l;
-  l.max_expansions = static_cast<std::size_t>(config.get_int(
-      "planning.search.max_expansions", static_cast<long long>(l.max_expansions), 1, 1'000'000'000));
-  l.max_time_s = config.get_double("planning.search.max_time_s", l.max_time_s, {0.0, 3600.0});
+  l.max_expansions = static_cast<std::size_t>(get(config, kMaxExpansions));
+  l.max_time_s = get(config, kMaxTime);
   return l;
+}
+
+ConfigSchema config_schema() {
+  return ConfigSchema()
+      .add(search_limits_schema())
+      .add(grid_astar_config_schema())
+      .add(direction_astar_config_schema())
+      .add(wpg_config_schema())
+      .add(occupancy_cost_config_schema())
+      .add(path_guidance_config_schema())
+      .add(pi_heading_config_schema())
+      .add(smart_cane_guidance_config_schema())
+      .add(byu_cost_config_schema())
+      .add(hand_guidance_config_schema())
+      .add(apriltag_detector_config_schema())
+      .add(foot_route_config_schema())
+      .add(narration_config_schema())
+      .add(sub_route_config_schema());
+}
+
+ConfigSchema local_planner_schema(std::string_view name) {
+  if (name == "astar") return grid_astar_config_schema();
+  if (name == "direction-astar") return direction_astar_config_schema();
+  if (name == "wpg") return wpg_config_schema();
+  return {};
 }
 
 std::vector<std::string> local_planner_names() { return {"astar", "direction-astar", "wpg"}; }

@@ -5,13 +5,23 @@
 #include <limits>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
+namespace {
+const ConfigKey<double> kForesight{"planning.follow.foresight_m", PathFollowerConfig{}.foresight_m, {1e-3, 20.0},
+                                   "path following looks this far ahead along the path [m] (eLabrador: 2)"};
+const ConfigKey<double> kMinForesight{"planning.follow.min_foresight_m", PathFollowerConfig{}.min_foresight_m,
+                                      {0.0, 20.0}, "below this foresight the way ahead is blocked [m] (<= foresight_m)"};
+}  // namespace
+
+ConfigSchema path_follower_config_schema() { return ConfigSchema().add(kForesight).add(kMinForesight); }
+
 PathFollowerConfig read_path_follower_config(const Config& config) {
   PathFollowerConfig c;
-  c.foresight_m = config.get_double("planning.follow.foresight_m", c.foresight_m, {1e-3, 20.0});
-  c.min_foresight_m = config.get_double("planning.follow.min_foresight_m", c.min_foresight_m, {0.0, c.foresight_m});
+  c.foresight_m = get(config, kForesight);
+  c.min_foresight_m = get(config, within(kMinForesight, {0.0, c.foresight_m}));
   return c;
 }
 

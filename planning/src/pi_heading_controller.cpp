@@ -3,16 +3,33 @@
 #include <algorithm>
 
 #include "navaid/planning/angles.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
+namespace {
+const PiHeadingConfig kDefaults;
+const ConfigKey<double> kKp{"planning.pi.kp", kDefaults.kp, {0.0, 10.0}, "proportional gain of the PI heading controller"};
+const ConfigKey<double> kKi{"planning.pi.ki", kDefaults.ki, {0.0, 10.0}, "integral gain of the PI heading controller"};
+const ConfigKey<double> kIntegralLimit{"planning.pi.integral_limit_rad_s", kDefaults.integral_limit_rad_s, {0.0, 100.0},
+                                       "bound on the integral of the heading error [rad s]"};
+const ConfigKey<double> kOutputLimit{"planning.pi.output_limit", kDefaults.output_limit, {1e-6, 100.0},
+                                     "bound on the controller's output"};
+const ConfigKey<double> kMaxDt{"planning.pi.max_dt_s", kDefaults.max_dt_s, {1e-6, 10.0},
+                               "a longer gap between updates restarts the integral [s]"};
+}  // namespace
+
+ConfigSchema pi_heading_config_schema() {
+  return ConfigSchema().add(kKp).add(kKi).add(kIntegralLimit).add(kOutputLimit).add(kMaxDt);
+}
+
 PiHeadingConfig read_pi_heading_config(const Config& config) {
   PiHeadingConfig c;
-  c.kp = config.get_double("planning.pi.kp", c.kp, {0.0, 10.0});
-  c.ki = config.get_double("planning.pi.ki", c.ki, {0.0, 10.0});
-  c.integral_limit_rad_s = config.get_double("planning.pi.integral_limit_rad_s", c.integral_limit_rad_s, {0.0, 100.0});
-  c.output_limit = config.get_double("planning.pi.output_limit", c.output_limit, {1e-6, 100.0});
-  c.max_dt_s = config.get_double("planning.pi.max_dt_s", c.max_dt_s, {1e-6, 10.0});
+  c.kp = get(config, kKp);
+  c.ki = get(config, kKi);
+  c.integral_limit_rad_s = get(config, kIntegralLimit);
+  c.output_limit = get(config, kOutputLimit);
+  c.max_dt_s = get(config, kMaxDt);
   return c;
 }
 

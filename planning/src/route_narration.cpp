@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/route_subgoals.hpp"
 
 namespace navaid::planning {
@@ -51,13 +52,31 @@ std::string crossing_phrase(const RouteCrossing& c) {
 
 }  // namespace
 
+namespace {
+const NarrationConfig kDefaults;
+const ConfigKey<double> kStraight{"planning.route.narration.straight_deg", kDefaults.straight_deg, {0.0, 90.0},
+                                  "smaller heading changes are not turns [deg]"};
+const ConfigKey<double> kSlight{"planning.route.narration.slight_deg", kDefaults.slight_deg, {0.0, 180.0},
+                                "up to this a turn is slight [deg] (>= straight_deg)"};
+const ConfigKey<double> kSharp{"planning.route.narration.sharp_deg", kDefaults.sharp_deg, {0.0, 180.0},
+                               "beyond this a turn is sharp [deg] (>= slight_deg)"};
+const ConfigKey<double> kTurnWindow{"planning.route.narration.turn_window_m", kDefaults.turn_window_m, {0.5, 100.0},
+                                    "headings are taken over this arc before and after a vertex [m]"};
+const ConfigKey<double> kLandmarkRadius{"planning.route.narration.landmark_radius_m", kDefaults.landmark_radius_m,
+                                        {0.0, 1000.0}, "landmarks this close to the destination are named [m]"};
+}  // namespace
+
+ConfigSchema narration_config_schema() {
+  return ConfigSchema().add(kStraight).add(kSlight).add(kSharp).add(kTurnWindow).add(kLandmarkRadius);
+}
+
 NarrationConfig narration_config(const Config& config) {
   NarrationConfig c;
-  c.straight_deg = config.get_double("planning.route.narration.straight_deg", c.straight_deg, {0.0, 90.0});
-  c.slight_deg = config.get_double("planning.route.narration.slight_deg", c.slight_deg, {c.straight_deg, 180.0});
-  c.sharp_deg = config.get_double("planning.route.narration.sharp_deg", c.sharp_deg, {c.slight_deg, 180.0});
-  c.turn_window_m = config.get_double("planning.route.narration.turn_window_m", c.turn_window_m, {0.5, 100.0});
-  c.landmark_radius_m = config.get_double("planning.route.narration.landmark_radius_m", c.landmark_radius_m, {0.0, 1000.0});
+  c.straight_deg = get(config, kStraight);
+  c.slight_deg = get(config, within(kSlight, {c.straight_deg, 180.0}));
+  c.sharp_deg = get(config, within(kSharp, {c.slight_deg, 180.0}));
+  c.turn_window_m = get(config, kTurnWindow);
+  c.landmark_radius_m = get(config, kLandmarkRadius);
   return c;
 }
 

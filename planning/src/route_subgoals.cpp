@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
@@ -42,10 +43,19 @@ GeoPoint LocalEnu::to_geo(const Vec2& enu) const {
   return GeoPoint{origin_.latitude_deg + enu.y() / m_per_deg_lat_, origin_.longitude_deg + enu.x() / m_per_deg_lon_};
 }
 
+namespace {
+const ConfigKey<double> kSubroute{"planning.route.subroute_m", SubRouteConfig{}.subroute_m, {0.5, 1000.0},
+                                  "length of one sub-route of a long route [m]"};
+const ConfigKey<double> kWindow{"planning.route.window_m", SubRouteConfig{}.window_m, {1.0, 200.0},
+                                "side of the local map around the user for sub-route subgoals [m]"};
+}  // namespace
+
+ConfigSchema sub_route_config_schema() { return ConfigSchema().add(kSubroute).add(kWindow); }
+
 SubRouteConfig sub_route_config(const Config& config) {
   SubRouteConfig c;
-  c.subroute_m = config.get_double("planning.route.subroute_m", c.subroute_m, {0.5, 1000.0});
-  c.window_m = config.get_double("planning.route.window_m", c.window_m, {1.0, 200.0});
+  c.subroute_m = get(config, kSubroute);
+  c.window_m = get(config, kWindow);
   return c;
 }
 

@@ -1,6 +1,7 @@
 #include "navaid/planning/smart_cane_guidance.hpp"
 
 #include "navaid/core/errors.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::planning {
 
@@ -13,6 +14,20 @@ SmartCaneGuidanceConfig SmartCaneGuidance::default_config() {
   return c;
 }
 
+namespace {
+const ConfigKey<std::string> kPlanner{"planning.smart_cane.planner", SmartCaneGuidanceConfig{}.planner, {"wpg", "astar"},
+                                      "the Smart Cane's local planner: wpg (the paper's) or astar (its Table II "
+                                      "baseline)"};
+}  // namespace
+
+ConfigSchema smart_cane_guidance_config_schema() {
+  return path_guidance_config_schema()
+      .add(wpg_config_schema())
+      .add(pi_heading_config_schema())
+      .add(kPlanner)
+      .add(grid_astar_config_schema());
+}
+
 SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config) {
   SmartCaneGuidanceConfig c;
   c.guidance = read_path_guidance_config(config);
@@ -22,7 +37,7 @@ SmartCaneGuidanceConfig read_smart_cane_guidance_config(const Config& config) {
   if (!config.has("planning.wpg.traversal_weight")) c.wpg.traversal_weight = 2.0;
   if (!config.has("planning.wpg.escape_distance_m")) c.wpg.escape_distance_m = 1.0;
   c.pi = read_pi_heading_config(config);
-  c.planner = config.get_string("planning.smart_cane.planner", c.planner, {"wpg", "astar"});
+  c.planner = get(config, kPlanner);
   c.astar = read_grid_astar_config(config);
   return c;
 }

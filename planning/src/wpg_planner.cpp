@@ -8,6 +8,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/planning/angles.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/grid_distance_heuristic.hpp"
 
 namespace navaid::planning {
@@ -190,55 +191,154 @@ std::vector<LfpcInput> wpg_inputs(const WpgConfig& c) {
   return inputs;
 }
 
+namespace {
+const WpgConfig kDefaults;
+const ConfigKey<double> kGravity{"planning.wpg.gravity", kDefaults.lipm.gravity, {0.1, 100.0}, "LIPM gravity [m/s^2]"};
+const ConfigKey<double> kComHeight{"planning.wpg.com_height_m", kDefaults.lipm.com_height_m, {0.1, 3.0},
+                                   "LIPM height of the centre of mass [m]"};
+const ConfigKey<double> kSupportTime{"planning.wpg.support_time_s", kDefaults.lipm.support_time_s, {0.05, 2.0},
+                                     "LIPM support time of one step [s]"};
+const ConfigKey<double> kLfpcGain{"planning.wpg.lfpc_gain", kDefaults.lfpc_gain, {0.0, 10.0},
+                                  "b: LFPC gain (must keep eq. 8 stable for the LIPM)"};
+const ConfigKey<std::vector<double>> kStepLength{"planning.wpg.step_length_m",
+                                                 std::vector<double>{kDefaults.step_length_min_m,
+                                                                     kDefaults.step_length_max_m},
+                                                 2, {0.05, 2.0}, "[min, max] range of the step length a_l [m]"};
+const ConfigKey<std::vector<double>> kStepWidth{"planning.wpg.step_width_m",
+                                                std::vector<double>{kDefaults.step_width_min_m, kDefaults.step_width_max_m},
+                                                2, {0.0, 1.0}, "[min, max] range of the step width a_w [m]"};
+const ConfigKey<int> kStepLengths{"planning.wpg.step_lengths", kDefaults.step_lengths, 1, 20,
+                                  "step lengths tried, evenly spaced over the range"};
+const ConfigKey<int> kStepWidths{"planning.wpg.step_widths", kDefaults.step_widths, 1, 20,
+                                 "step widths tried (1: the middle of the range)"};
+const ConfigKey<double> kMaxTurn{"planning.wpg.max_turn_deg", rad_to_deg(kDefaults.max_turn_rad), {0.0, 90.0},
+                                 "largest turn of one step [deg]"};
+const ConfigKey<int> kTurnsPerSide{"planning.wpg.turns_per_side", kDefaults.turns_per_side, 0, 20,
+                                   "turns tried on each side, evenly spaced up to max_turn_deg"};
+const ConfigKey<int> kComSamples{"planning.wpg.com_samples", kDefaults.com_samples, 1, 50,
+                                 "CoM positions checked along each step"};
+const ConfigKey<double> kComRadius{"planning.wpg.com_radius_m", kDefaults.com_radius_m, {0.0, 2.0},
+                                   "radius of the CoM sphere (the body) [m]"};
+const ConfigKey<double> kFootRadius{"planning.wpg.foot_radius_m", kDefaults.foot_radius_m, {0.0, 1.0},
+                                    "radius of the two gait-point spheres [m]"};
+const ConfigKey<double> kClearanceKSigma{"planning.wpg.clearance_k_sigma", kDefaults.clearance_k_sigma, {0.0, 10.0},
+                                         "every sphere grows by this times the estimate's sigma_xy"};
+const ConfigKey<double> kTurnWeight{"planning.wpg.turn_weight", kDefaults.turn_weight, {0.0, 100.0},
+                                    "sigma of eq. 9 [cost per rad]"};
+const ConfigKey<double> kRiskWeight{"planning.wpg.risk_weight", kDefaults.risk_weight, {0.0, 100.0}, "w_o of eq. 10"};
+const ConfigKey<double> kRiskDistance{"planning.wpg.risk_distance_m", kDefaults.risk_distance_m, {0.0, 10.0},
+                                      "d_max of eq. 10 [m]"};
+const ConfigKey<double> kTraversalWeight{"planning.wpg.traversal_weight", kDefaults.traversal_weight, {0.0, 100.0},
+                                         "weight of the cost-map value under each step (the Smart Cane's guidance: 2 "
+                                         "when absent)"};
+const ConfigKey<double> kEscapeDistance{"planning.wpg.escape_distance_m", kDefaults.escape_distance_m, {0.0, 10.0},
+                                        "a start nearer an obstacle than the body may leave within this distance [m] "
+                                        "(the Smart Cane's guidance: 1 when absent)"};
+const ConfigKey<double> kEscapeMinClearance{"planning.wpg.escape_min_clearance_m", kDefaults.escape_min_clearance_m,
+                                            {0.0, 2.0}, "a start with less clearance than this stays blocked [m]"};
+const ConfigKey<double> kWalkingStartSpeed{"planning.wpg.walking_start_speed_mps", kDefaults.walking_start_speed_mps,
+                                           {0.0, 10.0}, "a start at least this fast is planned as a walk in progress "
+                                                        "[m/s]"};
+const ConfigKey<std::string> kHeuristic{"planning.wpg.heuristic", std::string("grid"), {"grid", "euclidean"},
+                                        "search heuristic: coarse-grid distance or straight line"};
+const ConfigKey<double> kHeuristicCell{"planning.wpg.heuristic_cell_m", kDefaults.heuristic_cell_m, {0.01, 10.0},
+                                       "cell of the coarse-grid heuristic [m]"};
+const ConfigKey<double> kHeuristicWeight{"planning.wpg.heuristic_weight", kDefaults.heuristic_weight, {1.0, 10.0},
+                                         "weight of the heuristic"};
+const ConfigKey<double> kPruneCell{"planning.wpg.prune_cell_m", kDefaults.prune_cell_m, {0.01, 5.0},
+                                   "Prune(): one node per cell of this size and heading bin [m]"};
+const ConfigKey<int> kHeadingBins{"planning.wpg.heading_bins", kDefaults.heading_bins, 1, 360,
+                                  "Prune(): heading bins of a full turn"};
+const ConfigKey<double> kGoalTolerance{"planning.wpg.goal_tolerance_m", kDefaults.goal_tolerance_m, {0.01, 10.0},
+                                       "NearEnd(): the goal is reached within this [m]"};
+const ConfigKey<double> kHorizon{"planning.wpg.horizon_m", kDefaults.horizon_m, {0.0, 1000.0},
+                                 "ReachHorizon(): plan this far; 0 = to the goal (the Smart Cane's guidance: 10 when "
+                                 "absent)"};
+const ConfigKey<double> kDirectionBeta{"planning.wpg.direction_beta", kDefaults.direction_beta, {0.0, 1e4},
+                                       "directional subgoals: weight of 1 - cos"};
+}  // namespace
+
+ConfigSchema wpg_config_schema() {
+  return ConfigSchema()
+      .add(kGravity)
+      .add(kComHeight)
+      .add(kSupportTime)
+      .add(kLfpcGain)
+      .add(kStepLength)
+      .add(kStepWidth)
+      .add(kStepLengths)
+      .add(kStepWidths)
+      .add(kMaxTurn)
+      .add(kTurnsPerSide)
+      .add(kComSamples)
+      .add(kComRadius)
+      .add(kFootRadius)
+      .add(kClearanceKSigma)
+      .add(kTurnWeight)
+      .add(kRiskWeight)
+      .add(kRiskDistance)
+      .add(kTraversalWeight)
+      .add(kEscapeDistance)
+      .add(kEscapeMinClearance)
+      .add(kWalkingStartSpeed)
+      .add(kHeuristic)
+      .add(kHeuristicCell)
+      .add(kHeuristicWeight)
+      .add(kPruneCell)
+      .add(kHeadingBins)
+      .add(kGoalTolerance)
+      .add(kHorizon)
+      .add(kDirectionBeta)
+      .add(search_limits_schema());
+}
+
 WpgConfig read_wpg_config(const Config& config) {
   WpgConfig c;
-  c.lipm.gravity = config.get_double("planning.wpg.gravity", c.lipm.gravity, {0.1, 100.0});
-  c.lipm.com_height_m = config.get_double("planning.wpg.com_height_m", c.lipm.com_height_m, {0.1, 3.0});
-  c.lipm.support_time_s = config.get_double("planning.wpg.support_time_s", c.lipm.support_time_s, {0.05, 2.0});
-  c.lfpc_gain = config.get_double("planning.wpg.lfpc_gain", c.lfpc_gain, {0.0, 10.0});
+  c.lipm.gravity = get(config, kGravity);
+  c.lipm.com_height_m = get(config, kComHeight);
+  c.lipm.support_time_s = get(config, kSupportTime);
+  c.lfpc_gain = get(config, kLfpcGain);
   const GainInterval stable = lfpc_stable_gains(c.lipm);
   if (!stable.contains(c.lfpc_gain)) {
     throw ConfigError("", "planning.wpg.lfpc_gain",
                       fmt::format("b = {} makes the LFPC unstable for this LIPM: eq. 8 needs {:.3f} < b < {:.3f}",
                                   c.lfpc_gain, stable.low, stable.high));
   }
-  if (config.has("planning.wpg.step_length_m")) {
-    const std::vector<double> r = config.get_doubles("planning.wpg.step_length_m", 2, {0.05, 2.0});
+  if (config.has(kStepLength.name)) {
+    const std::vector<double> r = get(config, kStepLength);
     if (r[0] > r[1]) throw ConfigError("", "planning.wpg.step_length_m", "needs [min, max] with min <= max");
     c.step_length_min_m = r[0];
     c.step_length_max_m = r[1];
   }
-  if (config.has("planning.wpg.step_width_m")) {
-    const std::vector<double> r = config.get_doubles("planning.wpg.step_width_m", 2, {0.0, 1.0});
+  if (config.has(kStepWidth.name)) {
+    const std::vector<double> r = get(config, kStepWidth);
     if (r[0] > r[1]) throw ConfigError("", "planning.wpg.step_width_m", "needs [min, max] with min <= max");
     c.step_width_min_m = r[0];
     c.step_width_max_m = r[1];
   }
-  c.step_lengths = static_cast<int>(config.get_int("planning.wpg.step_lengths", c.step_lengths, 1, 20));
-  c.step_widths = static_cast<int>(config.get_int("planning.wpg.step_widths", c.step_widths, 1, 20));
-  c.max_turn_rad = deg_to_rad(config.get_double("planning.wpg.max_turn_deg", rad_to_deg(c.max_turn_rad), {0.0, 90.0}));
-  c.turns_per_side = static_cast<int>(config.get_int("planning.wpg.turns_per_side", c.turns_per_side, 0, 20));
-  c.com_samples = static_cast<int>(config.get_int("planning.wpg.com_samples", c.com_samples, 1, 50));
-  c.com_radius_m = config.get_double("planning.wpg.com_radius_m", c.com_radius_m, {0.0, 2.0});
-  c.foot_radius_m = config.get_double("planning.wpg.foot_radius_m", c.foot_radius_m, {0.0, 1.0});
-  c.clearance_k_sigma = config.get_double("planning.wpg.clearance_k_sigma", c.clearance_k_sigma, {0.0, 10.0});
-  c.turn_weight = config.get_double("planning.wpg.turn_weight", c.turn_weight, {0.0, 100.0});
-  c.risk_weight = config.get_double("planning.wpg.risk_weight", c.risk_weight, {0.0, 100.0});
-  c.risk_distance_m = config.get_double("planning.wpg.risk_distance_m", c.risk_distance_m, {0.0, 10.0});
-  c.traversal_weight = config.get_double("planning.wpg.traversal_weight", c.traversal_weight, {0.0, 100.0});
-  c.escape_distance_m = config.get_double("planning.wpg.escape_distance_m", c.escape_distance_m, {0.0, 10.0});
-  c.escape_min_clearance_m =
-      config.get_double("planning.wpg.escape_min_clearance_m", c.escape_min_clearance_m, {0.0, 2.0});
-  c.walking_start_speed_mps =
-      config.get_double("planning.wpg.walking_start_speed_mps", c.walking_start_speed_mps, {0.0, 10.0});
-  c.grid_heuristic = config.get_string("planning.wpg.heuristic", "grid", {"grid", "euclidean"}) == "grid";
-  c.heuristic_cell_m = config.get_double("planning.wpg.heuristic_cell_m", c.heuristic_cell_m, {0.01, 10.0});
-  c.heuristic_weight = config.get_double("planning.wpg.heuristic_weight", c.heuristic_weight, {1.0, 10.0});
-  c.prune_cell_m = config.get_double("planning.wpg.prune_cell_m", c.prune_cell_m, {0.01, 5.0});
-  c.heading_bins = static_cast<int>(config.get_int("planning.wpg.heading_bins", c.heading_bins, 1, 360));
-  c.goal_tolerance_m = config.get_double("planning.wpg.goal_tolerance_m", c.goal_tolerance_m, {0.01, 10.0});
-  c.horizon_m = config.get_double("planning.wpg.horizon_m", c.horizon_m, {0.0, 1000.0});
-  c.direction_beta = config.get_double("planning.wpg.direction_beta", c.direction_beta, {0.0, 1e4});
+  c.step_lengths = get(config, kStepLengths);
+  c.step_widths = get(config, kStepWidths);
+  c.max_turn_rad = deg_to_rad(get(config, kMaxTurn));
+  c.turns_per_side = get(config, kTurnsPerSide);
+  c.com_samples = get(config, kComSamples);
+  c.com_radius_m = get(config, kComRadius);
+  c.foot_radius_m = get(config, kFootRadius);
+  c.clearance_k_sigma = get(config, kClearanceKSigma);
+  c.turn_weight = get(config, kTurnWeight);
+  c.risk_weight = get(config, kRiskWeight);
+  c.risk_distance_m = get(config, kRiskDistance);
+  c.traversal_weight = get(config, kTraversalWeight);
+  c.escape_distance_m = get(config, kEscapeDistance);
+  c.escape_min_clearance_m = get(config, kEscapeMinClearance);
+  c.walking_start_speed_mps = get(config, kWalkingStartSpeed);
+  c.grid_heuristic = get(config, kHeuristic) == "grid";
+  c.heuristic_cell_m = get(config, kHeuristicCell);
+  c.heuristic_weight = get(config, kHeuristicWeight);
+  c.prune_cell_m = get(config, kPruneCell);
+  c.heading_bins = get(config, kHeadingBins);
+  c.goal_tolerance_m = get(config, kGoalTolerance);
+  c.horizon_m = get(config, kHorizon);
+  c.direction_beta = get(config, kDirectionBeta);
   c.limits = read_search_limits(config);
   return c;
 }
