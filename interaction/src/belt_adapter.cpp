@@ -6,6 +6,7 @@
 
 #include "adapter_support.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 
 namespace navaid::interaction {
 
@@ -27,12 +28,53 @@ void check(const BeltConfig& c) {
 
 }  // namespace
 
+namespace {
+const BeltConfig kDefaults;
+const ConfigKey<double> kRefresh{"interaction.belt.refresh_hz", kDefaults.refresh_hz, {0.1, 20.0},
+                                 "the belt's pattern refresh rate [Hz] (eLabrador: 1)"};
+const ConfigKey<double> kHoldMargin{"interaction.belt.hold_margin", kDefaults.hold_margin, {0.01, 1.0},
+                                    "a pattern is held for the refresh period times (1 + this)"};
+const ConfigKey<int> kLevelLow{"interaction.belt.level_low", kDefaults.level_low, 1, 1000,
+                               "vibration level of the low intensity mode [per mille]"};
+const ConfigKey<int> kLevelHigh{"interaction.belt.level_high", kDefaults.level_high, 1, 1000,
+                                "vibration level of the high intensity mode [per mille]"};
+const ConfigKey<std::string> kIntensity{"interaction.belt.intensity", std::nullopt, {"low", "high"},
+                                        "the user's intensity mode; absent: each cue's own intensity"};
+const ConfigKey<int> kPulseOn{"interaction.belt.pulse_on_ms", kDefaults.pulse_on_ms, 10, 5000,
+                              "on-course: the front vibrator's on time [ms]"};
+const ConfigKey<int> kPulseOff{"interaction.belt.pulse_off_ms", kDefaults.pulse_off_ms, 10, 5000,
+                               "on-course: the front vibrator's off time [ms]"};
+const ConfigKey<int> kUrgentOn{"interaction.belt.urgent_on_ms", kDefaults.urgent_on_ms, 10, 5000,
+                               "stop and obstacle: the fast pulse's on time [ms]"};
+const ConfigKey<int> kUrgentOff{"interaction.belt.urgent_off_ms", kDefaults.urgent_off_ms, 10, 5000,
+                                "stop and obstacle: the fast pulse's off time [ms]"};
+const ConfigKey<int> kArriveOn{"interaction.belt.arrive_on_ms", kDefaults.arrive_on_ms, 10, 5000,
+                               "arrival: the length of each of two pulses [ms]"};
+const ConfigKey<int> kArriveOff{"interaction.belt.arrive_off_ms", kDefaults.arrive_off_ms, 10, 5000,
+                                "arrival: the pause between the two pulses [ms]"};
+}  // namespace
+
+ConfigSchema belt_config_schema() {
+  return ConfigSchema()
+      .add(kRefresh)
+      .add(kHoldMargin)
+      .add(kLevelLow)
+      .add(kLevelHigh)
+      .add(kIntensity)
+      .add(kPulseOn)
+      .add(kPulseOff)
+      .add(kUrgentOn)
+      .add(kUrgentOff)
+      .add(kArriveOn)
+      .add(kArriveOff);
+}
+
 BeltConfig read_belt_config(const Config& config) {
   BeltConfig c;
-  c.refresh_hz = config.get_double("interaction.belt.refresh_hz", c.refresh_hz, {0.1, 20.0});
-  c.hold_margin = config.get_double("interaction.belt.hold_margin", c.hold_margin, {0.01, 1.0});
-  c.level_low = static_cast<int>(config.get_int("interaction.belt.level_low", c.level_low, 1, 1000));
-  c.level_high = static_cast<int>(config.get_int("interaction.belt.level_high", c.level_high, 1, 1000));
+  c.refresh_hz = get(config, kRefresh);
+  c.hold_margin = get(config, kHoldMargin);
+  c.level_low = get(config, kLevelLow);
+  c.level_high = get(config, kLevelHigh);
   if (c.level_low > c.level_high) {
     const char* key = config.has("interaction.belt.level_low") ? "interaction.belt.level_low"
                                                                 : "interaction.belt.level_high";
@@ -40,18 +82,13 @@ BeltConfig read_belt_config(const Config& config) {
                       "level_low " + std::to_string(c.level_low) + " exceeds level_high " +
                           std::to_string(c.level_high) + " (the low mode must not be the stronger)");
   }
-  if (config.has("interaction.belt.intensity")) {
-    c.intensity = cue_intensity_from_string(config.get_string("interaction.belt.intensity", {"low", "high"}));
-  }
-  const auto ms = [&](const char* key, int fallback) {
-    return static_cast<int>(config.get_int(std::string("interaction.belt.") + key, fallback, 10, 5000));
-  };
-  c.pulse_on_ms = ms("pulse_on_ms", c.pulse_on_ms);
-  c.pulse_off_ms = ms("pulse_off_ms", c.pulse_off_ms);
-  c.urgent_on_ms = ms("urgent_on_ms", c.urgent_on_ms);
-  c.urgent_off_ms = ms("urgent_off_ms", c.urgent_off_ms);
-  c.arrive_on_ms = ms("arrive_on_ms", c.arrive_on_ms);
-  c.arrive_off_ms = ms("arrive_off_ms", c.arrive_off_ms);
+  if (config.has(kIntensity.name)) c.intensity = cue_intensity_from_string(get(config, kIntensity));
+  c.pulse_on_ms = get(config, kPulseOn);
+  c.pulse_off_ms = get(config, kPulseOff);
+  c.urgent_on_ms = get(config, kUrgentOn);
+  c.urgent_off_ms = get(config, kUrgentOff);
+  c.arrive_on_ms = get(config, kArriveOn);
+  c.arrive_off_ms = get(config, kArriveOff);
   return c;
 }
 

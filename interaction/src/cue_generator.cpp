@@ -6,6 +6,7 @@
 
 #include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 #include "navaid/planning/angles.hpp"
 
 namespace navaid::interaction {
@@ -24,11 +25,34 @@ constexpr NameTable<CueModality, 3> kModalityNames{{
 
 }  // namespace
 
+namespace {
+const CueGeneratorConfig kDefaults;
+const ConfigKey<double> kOnCourse{"interaction.cues.on_course_deg", 10.0, {1.0, 45.0},
+                                  "heading errors below this are on course [deg]"};
+const ConfigKey<double> kTurn{"interaction.cues.turn_deg", 30.0, {1.0, 90.0},
+                              "heading errors above this are turns, between the two veers [deg] (> on_course_deg)"};
+const ConfigKey<double> kHysteresis{"interaction.cues.hysteresis_deg", 3.0, {0.0, 10.0},
+                                    "margin a heading must cross to change class [deg]"};
+const ConfigKey<double> kMinConfidence{"interaction.cues.min_confidence", kDefaults.min_confidence, {0.0, 1.0},
+                                       "below this guidance confidence the user is told to wait (locating)"};
+const ConfigKey<double> kLocatingRepeat{"interaction.cues.locating_repeat_s", kDefaults.locating_repeat_s, {1.0, 120.0},
+                                        "while locating, the message is repeated this often [s]"};
+const ConfigKey<double> kTtlHaptic{"interaction.cues.ttl_haptic_s", kDefaults.ttl_haptic_s, {0.1, 60.0},
+                                   "a direction cue older than this is stale [s]"};
+const ConfigKey<double> kTtlSpeech{"interaction.cues.ttl_speech_s", kDefaults.ttl_speech_s, {0.1, 60.0},
+                                   "a spoken cue not started within this is dropped [s]"};
+const ConfigKey<double> kTtlSystem{"interaction.cues.ttl_system_s", kDefaults.ttl_system_s, {0.1, 60.0},
+                                   "a system message not started within this is dropped [s]"};
+const ConfigKey<std::string> kModality{"interaction.cues.modality", std::string("both"), enum_names(kModalityNames),
+                                        "cue channels: both, haptic only or audio only"};
+
+}  // namespace
+
 CueGeneratorConfig read_cue_generator_config(const Config& config) {
   CueGeneratorConfig c;
-  const double on_course = config.get_double("interaction.cues.on_course_deg", 10.0, {1.0, 45.0});
-  const double turn = config.get_double("interaction.cues.turn_deg", 30.0, {1.0, 90.0});
-  const double hysteresis = config.get_double("interaction.cues.hysteresis_deg", 3.0, {0.0, 10.0});
+  const double on_course = get(config, kOnCourse);
+  const double turn = get(config, kTurn);
+  const double hysteresis = get(config, kHysteresis);
   if (!(turn > on_course)) {
     throw ConfigError("", "interaction.cues.turn_deg", fmt::format("interaction.cues.turn_deg ({}) must exceed interaction.cues.on_course_deg ({})",
                                   turn, on_course));
@@ -42,14 +66,39 @@ CueGeneratorConfig read_cue_generator_config(const Config& config) {
   c.on_course_rad = deg_to_rad(on_course);
   c.turn_rad = deg_to_rad(turn);
   c.hysteresis_rad = deg_to_rad(hysteresis);
-  c.min_confidence = config.get_double("interaction.cues.min_confidence", c.min_confidence, {0.0, 1.0});
-  c.locating_repeat_s = config.get_double("interaction.cues.locating_repeat_s", c.locating_repeat_s, {1.0, 120.0});
-  c.ttl_haptic_s = config.get_double("interaction.cues.ttl_haptic_s", c.ttl_haptic_s, {0.1, 60.0});
-  c.ttl_speech_s = config.get_double("interaction.cues.ttl_speech_s", c.ttl_speech_s, {0.1, 60.0});
-  c.ttl_system_s = config.get_double("interaction.cues.ttl_system_s", c.ttl_system_s, {0.1, 60.0});
-  c.modality = *cue_modality_from_string(
-      config.get_string("interaction.cues.modality", "both", enum_names(kModalityNames)));
+  c.min_confidence = get(config, kMinConfidence);
+  c.locating_repeat_s = get(config, kLocatingRepeat);
+  c.ttl_haptic_s = get(config, kTtlHaptic);
+  c.ttl_speech_s = get(config, kTtlSpeech);
+  c.ttl_system_s = get(config, kTtlSystem);
+  c.modality = *cue_modality_from_string(get(config, kModality));
   return c;
+}
+
+ConfigSchema cue_generator_config_schema() {
+  return ConfigSchema()
+      .add(kOnCourse)
+      .add(kTurn)
+      .add(kHysteresis)
+      .add(kMinConfidence)
+      .add(kLocatingRepeat)
+      .add(kTtlHaptic)
+      .add(kTtlSpeech)
+      .add(kTtlSystem)
+      .add(kModality);
+}
+
+ConfigSchema config_schema() {
+  return ConfigSchema()
+      .add(cue_generator_config_schema())
+      .add(cue_policy_config_schema())
+      .add(belt_config_schema())
+      .add(hand_unit_config_schema())
+      .add(rumble_config_schema())
+      .add(steering_wheel_config_schema())
+      .add(speech_config_schema())
+      .add(link_config_schema())
+      .add(route_timeline_config_schema());
 }
 
 std::string_view to_string(CueModality modality) { return enum_name(kModalityNames, modality); }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "navaid/core/enum_names.hpp"
+#include "navaid/interaction/config_schema.hpp"
 
 namespace navaid::interaction {
 
@@ -56,18 +57,45 @@ Timestamp after(Timestamp t, double seconds) { return t + seconds_to_ns(seconds)
 std::string_view to_string(CueChannel channel) { return enum_name(kChannelNames, channel); }
 std::string_view to_string(CueOutcome outcome) { return enum_name(kOutcomeNames, outcome); }
 
+namespace {
+const CuePolicyConfig kDefaults;
+constexpr Range kSeconds{0.0, 60.0};
+const ConfigKey<double> kStopMinGap{"interaction.policy.stop_min_gap_s", kDefaults.stop_min_gap_s, kSeconds,
+                                    "a stop cue at most once per this [s] (CaBot: 1)"};
+const ConfigKey<double> kTurnMinGap{"interaction.policy.turn_min_gap_s", kDefaults.turn_min_gap_s, kSeconds,
+                                    "a turn cue at most once per this [s] (CaBot: 5)"};
+const ConfigKey<double> kHandMessagePeriod{"interaction.policy.hand_message_period_s", kDefaults.hand_message_period_s,
+                                           kSeconds, "a hand-guidance message at most once per this [s] (W-ROMA: 2)"};
+const ConfigKey<double> kSpeechMinGap{"interaction.policy.speech_min_gap_s", kDefaults.speech_min_gap_s, kSeconds,
+                                      "least time between two spoken messages [s] (the Augmented Cane: 2.3)"};
+const ConfigKey<double> kDuplicateWindow{"interaction.policy.duplicate_window_s", kDefaults.duplicate_window_s, kSeconds,
+                                         "the same words are not spoken again within this [s]"};
+const ConfigKey<double> kStopHold{"interaction.policy.stop_hold_s", kDefaults.stop_hold_s, kSeconds,
+                                  "lower haptic cues wait this long after a stop [s]"};
+const ConfigKey<int> kInterruptPriority{"interaction.policy.interrupt_priority", kDefaults.interrupt_priority, 0, 1000,
+                                        "cues of at least this priority interrupt a message in progress"};
+}  // namespace
+
+ConfigSchema cue_policy_config_schema() {
+  return ConfigSchema()
+      .add(kStopMinGap)
+      .add(kTurnMinGap)
+      .add(kHandMessagePeriod)
+      .add(kSpeechMinGap)
+      .add(kDuplicateWindow)
+      .add(kStopHold)
+      .add(kInterruptPriority);
+}
+
 CuePolicyConfig read_cue_policy_config(const Config& config) {
   CuePolicyConfig c;
-  const Range seconds{0.0, 60.0};
-  c.stop_min_gap_s = config.get_double("interaction.policy.stop_min_gap_s", c.stop_min_gap_s, seconds);
-  c.turn_min_gap_s = config.get_double("interaction.policy.turn_min_gap_s", c.turn_min_gap_s, seconds);
-  c.hand_message_period_s =
-      config.get_double("interaction.policy.hand_message_period_s", c.hand_message_period_s, seconds);
-  c.speech_min_gap_s = config.get_double("interaction.policy.speech_min_gap_s", c.speech_min_gap_s, seconds);
-  c.duplicate_window_s = config.get_double("interaction.policy.duplicate_window_s", c.duplicate_window_s, seconds);
-  c.stop_hold_s = config.get_double("interaction.policy.stop_hold_s", c.stop_hold_s, seconds);
-  c.interrupt_priority =
-      static_cast<int>(config.get_int("interaction.policy.interrupt_priority", c.interrupt_priority, 0, 1000));
+  c.stop_min_gap_s = get(config, kStopMinGap);
+  c.turn_min_gap_s = get(config, kTurnMinGap);
+  c.hand_message_period_s = get(config, kHandMessagePeriod);
+  c.speech_min_gap_s = get(config, kSpeechMinGap);
+  c.duplicate_window_s = get(config, kDuplicateWindow);
+  c.stop_hold_s = get(config, kStopHold);
+  c.interrupt_priority = get(config, kInterruptPriority);
   return c;
 }
 

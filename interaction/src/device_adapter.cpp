@@ -6,6 +6,7 @@
 #include <string>
 
 #include "navaid/interaction/belt_adapter.hpp"
+#include "navaid/interaction/config_schema.hpp"
 #include "navaid/interaction/hand_unit_adapter.hpp"
 #include "navaid/interaction/rumble_adapter.hpp"
 #include "navaid/interaction/steering_wheel_adapter.hpp"
@@ -31,6 +32,16 @@ std::uint16_t refresh_hold_ms(double period_s, double margin) {
     throw std::invalid_argument("refresh_hold_ms: hold of " + std::to_string(ms) + " ms exceeds 65535 ms");
   }
   return static_cast<std::uint16_t>(ms);
+}
+
+ConfigSchema device_adapter_schema(DeviceKind kind) {
+  switch (kind) {
+    case DeviceKind::kBelt: return belt_config_schema();
+    case DeviceKind::kHand: return hand_unit_config_schema();
+    case DeviceKind::kRumble: return rumble_config_schema();
+    case DeviceKind::kWheel: return steering_wheel_config_schema();
+  }
+  return {};
 }
 
 std::unique_ptr<DeviceAdapter> make_device_adapter(DeviceKind kind, const Config& config) {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 
 namespace navaid::interaction {
 
@@ -42,10 +43,29 @@ nlohmann::ordered_json decoder_json(const DecoderCounters& c) {
 
 }  // namespace
 
+namespace {
+const LinkConfig kDefaults;
+const ConfigKey<double> kHeartbeat{"interaction.link.heartbeat_s", kDefaults.heartbeat_s, {0.02, 0.5},
+                                   "a heartbeat goes out when nothing was sent for this long [s]"};
+const ConfigKey<double> kTimeout{"interaction.link.timeout_s", kDefaults.timeout_s, {0.1, 30.0},
+                                 "no reply for this long: the link is lost [s] (> heartbeat_s)"};
+const ConfigKey<double> kAckTimeout{"interaction.link.ack_timeout_s", kDefaults.ack_timeout_s, {0.001, 5.0},
+                                    "a pattern frame without ACK for this long is sent again [s]"};
+const ConfigKey<int> kMaxRetransmits{"interaction.link.max_retransmits", kDefaults.max_retransmits, 0, 20,
+                                     "retransmissions of one frame before it is given up"};
+const ConfigKey<double> kReconnect{"interaction.link.reconnect_s", kDefaults.reconnect_s, {0.01, 60.0},
+                                   "while the port is gone, try reopening it this often [s]"};
+const ConfigKey<int> kBaud{kBaudKey, kDefaults.baud, 1, 4000000, "serial baud rate (a standard rate)"};
+}  // namespace
+
+ConfigSchema link_config_schema() {
+  return ConfigSchema().add(kHeartbeat).add(kTimeout).add(kAckTimeout).add(kMaxRetransmits).add(kReconnect).add(kBaud);
+}
+
 LinkConfig read_link_config(const Config& config) {
   LinkConfig c;
-  c.heartbeat_s = config.get_double("interaction.link.heartbeat_s", c.heartbeat_s, {0.02, 0.5});
-  c.timeout_s = config.get_double("interaction.link.timeout_s", c.timeout_s, {0.1, 30.0});
+  c.heartbeat_s = get(config, kHeartbeat);
+  c.timeout_s = get(config, kTimeout);
   if (c.timeout_s <= c.heartbeat_s) {
     const char* key = config.has("interaction.link.timeout_s") ? "interaction.link.timeout_s"
                                                                 : "interaction.link.heartbeat_s";
@@ -53,11 +73,10 @@ LinkConfig read_link_config(const Config& config) {
                       "timeout_s " + std::to_string(c.timeout_s) + " must exceed heartbeat_s " +
                           std::to_string(c.heartbeat_s) + " (the link would be lost between two heartbeats)");
   }
-  c.ack_timeout_s = config.get_double("interaction.link.ack_timeout_s", c.ack_timeout_s, {0.001, 5.0});
-  c.max_retransmits =
-      static_cast<int>(config.get_int("interaction.link.max_retransmits", c.max_retransmits, 0, 20));
-  c.reconnect_s = config.get_double("interaction.link.reconnect_s", c.reconnect_s, {0.01, 60.0});
-  c.baud = static_cast<int>(config.get_int(kBaudKey, c.baud, 1, 4000000));
+  c.ack_timeout_s = get(config, kAckTimeout);
+  c.max_retransmits = get(config, kMaxRetransmits);
+  c.reconnect_s = get(config, kReconnect);
+  c.baud = get(config, kBaud);
   const auto& rates = supported_baud_rates();
   if (std::find(rates.begin(), rates.end(), c.baud) == rates.end()) {
     std::string list;

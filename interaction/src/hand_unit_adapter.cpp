@@ -8,6 +8,7 @@
 
 #include "adapter_support.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 
 namespace navaid::interaction {
 
@@ -48,18 +49,31 @@ void check(const HandUnitConfig& c) {
 
 }  // namespace
 
+namespace {
+const HandUnitConfig kDefaults;
+const ConfigKey<double> kPeriod{"interaction.hand.period_s", kDefaults.period_s, {0.2, 10.0},
+                                "the hand unit takes a command this often [s] (W-ROMA: 2)"};
+const ConfigKey<double> kHold{"interaction.hand.hold_s", kDefaults.hold_s, {0.05, 10.0},
+                              "each hand-unit pattern is held this long [s] (<= period_s)"};
+const ConfigKey<int> kLevel{"interaction.hand.level", kDefaults.level, 1, 1000, "hand-unit motor level [per mille]"};
+const ConfigKey<int> kArrivePulse{"interaction.hand.arrive_pulse_ms", kDefaults.arrive_pulse_ms, 10, 5000,
+                                  "on arrival all six motors pulse this long [ms]"};
+}  // namespace
+
+ConfigSchema hand_unit_config_schema() { return ConfigSchema().add(kPeriod).add(kHold).add(kLevel).add(kArrivePulse); }
+
 HandUnitConfig read_hand_unit_config(const Config& config) {
   HandUnitConfig c;
-  c.period_s = config.get_double("interaction.hand.period_s", c.period_s, {0.2, 10.0});
-  c.hold_s = config.get_double("interaction.hand.hold_s", c.hold_s, {0.05, 10.0});
+  c.period_s = get(config, kPeriod);
+  c.hold_s = get(config, kHold);
   if (c.hold_s > c.period_s) {
     const char* key = config.has("interaction.hand.hold_s") ? "interaction.hand.hold_s" : "interaction.hand.period_s";
     throw ConfigError(config.origin(key), key,
                       "hold_s " + std::to_string(c.hold_s) + " exceeds period_s " + std::to_string(c.period_s) +
                           " (each command must end before the next, as in W-ROMA)");
   }
-  c.level = static_cast<int>(config.get_int("interaction.hand.level", c.level, 1, 1000));
-  c.arrive_pulse_ms = static_cast<int>(config.get_int("interaction.hand.arrive_pulse_ms", c.arrive_pulse_ms, 10, 5000));
+  c.level = get(config, kLevel);
+  c.arrive_pulse_ms = get(config, kArrivePulse);
   return c;
 }
 

@@ -1,5 +1,7 @@
 #include "navaid/interaction/route_timeline.hpp"
 
+#include "navaid/interaction/config_schema.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -8,10 +10,19 @@
 
 namespace navaid::interaction {
 
+namespace {
+const ConfigKey<double> kWalkSpeed{"interaction.route.walk_speed_mps", RouteTimelineConfig{}.walk_speed_mps, {0.2, 3.0},
+                                   "walking speed of a route's cue timeline [m/s]"};
+const ConfigKey<double> kAnnounce{"interaction.route.announce_m", RouteTimelineConfig{}.announce_m, {0.0, 200.0},
+                                  "a turn, crossing or steps is announced this far ahead [m]"};
+}  // namespace
+
+ConfigSchema route_timeline_config_schema() { return ConfigSchema().add(kWalkSpeed).add(kAnnounce); }
+
 RouteTimelineConfig read_route_timeline_config(const Config& config) {
   RouteTimelineConfig c;
-  c.walk_speed_mps = config.get_double("interaction.route.walk_speed_mps", c.walk_speed_mps, {0.2, 3.0});
-  c.announce_m = config.get_double("interaction.route.announce_m", c.announce_m, {0.0, 200.0});
+  c.walk_speed_mps = get(config, kWalkSpeed);
+  c.announce_m = get(config, kAnnounce);
   return c;
 }
 

@@ -1,5 +1,7 @@
 #include "navaid/interaction/rumble_adapter.hpp"
 
+#include "navaid/interaction/config_schema.hpp"
+
 #include <array>
 #include <stdexcept>
 #include <string>
@@ -14,10 +16,19 @@ constexpr std::array<std::string_view, RumbleAdapter::kCount> kNames{"left", "ri
 
 }  // namespace
 
+namespace {
+const ConfigKey<double> kRefresh{"interaction.rumble.refresh_hz", RumbleConfig{}.refresh_hz, {1.0, 100.0},
+                                 "the rumble remotes' refresh rate [Hz]"};
+const ConfigKey<double> kHoldMargin{"interaction.rumble.hold_margin", RumbleConfig{}.hold_margin, {0.01, 1.0},
+                                    "a rumble is held for the refresh period times (1 + this)"};
+}  // namespace
+
+ConfigSchema rumble_config_schema() { return ConfigSchema().add(kRefresh).add(kHoldMargin); }
+
 RumbleConfig read_rumble_config(const Config& config) {
   RumbleConfig c;
-  c.refresh_hz = config.get_double("interaction.rumble.refresh_hz", c.refresh_hz, {1.0, 100.0});
-  c.hold_margin = config.get_double("interaction.rumble.hold_margin", c.hold_margin, {0.01, 1.0});
+  c.refresh_hz = get(config, kRefresh);
+  c.hold_margin = get(config, kHoldMargin);
   return c;
 }
 

@@ -12,6 +12,7 @@
 
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 
 namespace navaid::interaction {
 
@@ -92,14 +93,29 @@ void check_ranges(const SpeechConfig& config) {
 
 std::string default_voice(std::string_view language) { return std::string(language); }
 
+namespace {
+const ConfigKey<std::string> kLanguage{"interaction.speech.language", std::string("en"), {"en", "de"},
+                                       "language of the spoken messages"};
+const ConfigKey<std::string> kVoice{kVoiceKey, std::nullopt, {},
+                                    "espeak-ng voice (en, en-us, en+f3, de, ...); default (or empty): the language's"};
+const ConfigKey<int> kRate{"interaction.speech.rate_wpm", 175, 80, 450, "speaking rate [words per minute]"};
+const ConfigKey<int> kPitch{"interaction.speech.pitch", 50, 0, 99, "base pitch of the voice"};
+const ConfigKey<std::string> kMode{"interaction.speech.mode", std::string("audio"), {"audio", "text"},
+                                   "audio synthesises speech; text only estimates its durations"};
+}  // namespace
+
+ConfigSchema speech_config_schema() {
+  return ConfigSchema().add(kLanguage).add(kVoice).add(kRate).add(kPitch).add(kMode);
+}
+
 SpeechConfig read_speech_config(const Config& config) {
   SpeechConfig out;
-  out.language = config.get_string("interaction.speech.language", "en", {"en", "de"});
-  out.voice = config.get_string(kVoiceKey, default_voice(out.language), {});
+  out.language = get(config, kLanguage);
+  out.voice = get(config, defaulting_to(kVoice, default_voice(out.language)));
   if (out.voice.empty()) out.voice = default_voice(out.language);
-  out.rate_wpm = static_cast<int>(config.get_int("interaction.speech.rate_wpm", 175, 80, 450));
-  out.pitch = static_cast<int>(config.get_int("interaction.speech.pitch", 50, 0, 99));
-  out.text_only = config.get_string("interaction.speech.mode", "audio", {"audio", "text"}) == "text";
+  out.rate_wpm = get(config, kRate);
+  out.pitch = get(config, kPitch);
+  out.text_only = get(config, kMode) == "text";
   return out;
 }
 

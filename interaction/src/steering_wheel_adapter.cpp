@@ -1,5 +1,7 @@
 #include "navaid/interaction/steering_wheel_adapter.hpp"
 
+#include "navaid/interaction/config_schema.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -15,11 +17,22 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
+namespace {
+const ConfigKey<double> kRefresh{"interaction.wheel.refresh_hz", SteeringWheelConfig{}.refresh_hz, {1.0, 100.0},
+                                 "the steering wheel's refresh rate [Hz] (the planner's re-planning rate)"};
+const ConfigKey<double> kHoldMargin{"interaction.wheel.hold_margin", SteeringWheelConfig{}.hold_margin, {0.01, 1.0},
+                                    "a steering command is held for the refresh period times (1 + this)"};
+const ConfigKey<double> kMaxSteering{"interaction.wheel.max_steering_deg", SteeringWheelConfig{}.max_steering_deg,
+                                     {1.0, 90.0}, "largest commanded steering angle [deg]"};
+}  // namespace
+
+ConfigSchema steering_wheel_config_schema() { return ConfigSchema().add(kRefresh).add(kHoldMargin).add(kMaxSteering); }
+
 SteeringWheelConfig read_steering_wheel_config(const Config& config) {
   SteeringWheelConfig c;
-  c.refresh_hz = config.get_double("interaction.wheel.refresh_hz", c.refresh_hz, {1.0, 100.0});
-  c.hold_margin = config.get_double("interaction.wheel.hold_margin", c.hold_margin, {0.01, 1.0});
-  c.max_steering_deg = config.get_double("interaction.wheel.max_steering_deg", c.max_steering_deg, {1.0, 90.0});
+  c.refresh_hz = get(config, kRefresh);
+  c.hold_margin = get(config, kHoldMargin);
+  c.max_steering_deg = get(config, kMaxSteering);
   return c;
 }
 
