@@ -7,6 +7,7 @@
 
 #include "navaid/core/enum_names.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/estimation/config_schema.hpp"
 
 namespace navaid::estimation {
 
@@ -70,34 +71,260 @@ constexpr NameTable<InitializationMethod, 3> kInitializationNames{{
     {InitializationMethod::kPnp, "pnp"},
 }};
 
-/// An enum key: Config checks the name against the table's names (its error lists them), the
+/// An enum key: get() checks the name against the table's names (its error lists them), the
 /// table gives the value.
 template <class Enum, std::size_t N>
-Enum get_enum(const Config& c, const char* key, const std::string& fallback, const NameTable<Enum, N>& table) {
-  const std::string name = c.get_string(key, fallback, enum_names(table));
-  if (const std::optional<Enum> value = enum_value(table, name)) return *value;
-  throw Error("unreachable: Config::get_string validated '" + name + "'");
+ConfigKey<std::string> enum_key(const char* key, const std::string& fallback, const NameTable<Enum, N>& table,
+                                const char* doc) {
+  return ConfigKey<std::string>{key, fallback, enum_names(table), doc};
 }
 
-Vec3 get_vec3(const Config& c, const char* key, const Vec3& fallback, Range allowed) {
-  if (!c.has(key)) return fallback;
-  const auto v = c.get_doubles(key, 3, allowed);
+template <class Enum, std::size_t N>
+Enum get_enum(const Config& c, const ConfigKey<std::string>& key, const NameTable<Enum, N>& table) {
+  const std::string name = get(c, key);
+  if (const std::optional<Enum> value = enum_value(table, name)) return *value;
+  throw Error("unreachable: get() validated '" + name + "'");
+}
+
+Vec3 get_vec3(const Config& c, const ConfigKey<std::vector<double>>& key) {
+  const auto v = get(c, key);
   return Vec3(v[0], v[1], v[2]);
 }
 
+std::vector<double> items(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+const EstimatorConfig kDefaults;
+const FailureThresholds& kFailure = kDefaults.failure;
+
+// Window, IMU and factor switches.
+const ConfigKey<int> kWindowSize{"estimator.window_size", kDefaults.window_size, 2, 100, "keyframes in the window"};
+const ConfigKey<bool> kUseImu{"estimator.factors.imu", kDefaults.use_imu, "IMU preintegration factors"};
+const ConfigKey<double> kImuNoiseScale{"estimator.imu.noise_scale", kDefaults.imu_noise_scale, {1e-3, 1e3},
+                                       "multiplier of the calibration's IMU white-noise densities"};
+const ConfigKey<double> kImuRandomWalkScale{"estimator.imu.random_walk_scale", kDefaults.imu_random_walk_scale,
+                                            {1e-3, 1e3}, "multiplier of the calibration's IMU random walks"};
+const ConfigKey<double> kImuMaxSampleGap{"estimator.imu.max_sample_gap", kDefaults.imu_max_sample_gap_s, {0, 10},
+                                         "IMU gaps longer than this are bridged with the walker's motion as noise [s]; "
+                                         "0 = never"};
+const ConfigKey<double> kImuGapGyroDensity{"estimator.imu.gap_gyro_density", kDefaults.imu_gap_gyro_density, {1e-4, 100},
+                                           "gyro noise density over a bridged IMU gap [rad/s/sqrt(Hz)]"};
+const ConfigKey<double> kImuGapAccelDensity{"estimator.imu.gap_accel_density", kDefaults.imu_gap_accel_density,
+                                            {1e-3, 1000}, "accelerometer noise density over a bridged IMU gap "
+                                                          "[m/s^2/sqrt(Hz)]"};
+const ConfigKey<bool> kUseReprojection{"estimator.factors.reprojection", kDefaults.use_reprojection,
+                                       "reprojection factors"};
+const ConfigKey<bool> kUseInverseDepth{"estimator.factors.inverse_depth", kDefaults.use_inverse_depth,
+                                       "inverse-depth factors"};
+const ConfigKey<bool> kUseDepth3d{"estimator.factors.depth_3d", kDefaults.use_depth_3d, "depth-augmented 3D factors"};
+const ConfigKey<bool> kUseGps{"estimator.factors.gps", kDefaults.use_gps, "GPS factors"};
+const ConfigKey<bool> kUseMag{"estimator.factors.mag", kDefaults.use_mag, "magnetometer factors"};
+const ConfigKey<bool> kUseZeroVelocity{"estimator.factors.zero_velocity", kDefaults.use_zero_velocity,
+                                       "zero-velocity updates on frames whose tracks stood still"};
+const ConfigKey<double> kZeroVelocitySigma{"estimator.zero_velocity.sigma", kDefaults.zero_velocity_sigma_mps,
+                                           {1e-6, 10}, "sigma of a zero-velocity update [m/s]"};
+const ConfigKey<double> kZeroVelocityMaxMotion{"estimator.zero_velocity.max_motion_px",
+                                               kDefaults.zero_velocity_max_motion_px, {0, 100},
+                                               "tracks moving at most this (median) count as still [px]"};
+const ConfigKey<double> kZeroVelocityLookback{"estimator.zero_velocity.lookback", kDefaults.zero_velocity_lookback_s,
+                                              {0.01, 10}, "track motion is measured against the frame this much "
+                                                          "earlier [s]"};
+const ConfigKey<double> kZeroVelocityMaxSpeed{"estimator.zero_velocity.max_speed", kDefaults.zero_velocity_max_speed_mps,
+                                              {0, 10}, "no zero-velocity update above this predicted speed [m/s]"};
+const ConfigKey<bool> kUseDepth{"estimator.depth.enabled", kDefaults.use_depth,
+                                "false: ignore every depth measurement (VIO)"};
+
+// GPS.
+const ConfigKey<double> kGpsMaxTimeOffset{"estimator.gps.max_time_offset", kDefaults.gps_max_time_offset_s, {0, 1},
+                                          "a fix joins the frame within this time of it [s]"};
+const ConfigKey<double> kGpsHuber{"estimator.gps.huber_threshold", kDefaults.gps_huber_threshold, {0.1, 100},
+                                  "Huber threshold of the GPS factors [sigma]"};
+const ConfigKey<double> kGpsCorrelationTime{"estimator.gps.correlation_time", kDefaults.gps_correlation_time_s, {0, 1e4},
+                                            "correlation time of the fix errors (multipath) [s]"};
+const ConfigKey<std::string> kGpsMode =
+    enum_key("estimator.gps.mode", "joint", kGpsModeNames, "GPS in the window (joint) or registered apart (decoupled)");
+const ConfigKey<double> kGpsMultipathFraction{"estimator.gps.multipath_fraction", kDefaults.gps_multipath_fraction,
+                                              {0, 0.95}, "joint: share of a fix's covariance that is multipath "
+                                                         "(a Gauss-Markov bias); 0: independent fixes"};
+const ConfigKey<double> kGpsOutlierGate{"estimator.gps.outlier_gate", kDefaults.gps_outlier_gate, {0, 1e6},
+                                        "fixes beyond this squared Mahalanobis distance are not used; 0: off"};
+const ConfigKey<double> kGpsMaxOutlier{"estimator.gps.max_outlier", kDefaults.gps_max_outlier_s, {0, 1e4},
+                                       "fixes that disagree for longer than this are used again [s]"};
+const ConfigKey<int> kGpsRegistrationFixes{"estimator.gps.registration_fixes", kDefaults.gps_registration_fixes, 0,
+                                           1000000, "decoupled: register over the newest this many fixes (0: all)"};
+
+// Magnetometer.
+const ConfigKey<std::vector<double>> kMagReference{"estimator.mag.reference_field", items(kDefaults.mag_reference_field_enu),
+                                                   3, {-1e-3, 1e-3}, "reference magnetic field [east, north, up] [T] "
+                                                                     "(with a horizontal part)"};
+const ConfigKey<std::vector<double>> kMagHardIron{"estimator.mag.hard_iron", items(kDefaults.mag_hard_iron), 3,
+                                                  {-1e-3, 1e-3}, "magnetometer hard-iron offset [T]"};
+const ConfigKey<std::vector<double>> kMagSoftIron{"estimator.mag.soft_iron",
+                                                  std::vector<double>{1, 0, 0, 0, 1, 0, 0, 0, 1}, 9, {-100, 100},
+                                                  "magnetometer soft-iron matrix, row by row (near symmetric positive "
+                                                  "definite)"};
+const ConfigKey<double> kMagSigma{"estimator.mag.sigma", kDefaults.mag_sigma, {1e-10, 1e-4},
+                                  "white noise per axis of one magnetometer sample [T]"};
+const ConfigKey<double> kMagMaxTimeOffset{"estimator.mag.max_time_offset", kDefaults.mag_max_time_offset_s, {0, 1},
+                                          "samples within this time of a state are used for it [s]"};
+const ConfigKey<double> kMagMaxNormDeviation{"estimator.mag.max_norm_deviation", kDefaults.mag_max_norm_deviation,
+                                             {0, 10}, "a field whose strength is off by more than this fraction is "
+                                                      "disturbed; 0: off"};
+const ConfigKey<double> kMagMaxInclinationDeviation{"estimator.mag.max_inclination_deviation",
+                                                    kDefaults.mag_max_inclination_deviation_deg, {0, 180},
+                                                    "a field whose inclination is off by more than this is disturbed "
+                                                    "[deg]; 0: off"};
+const ConfigKey<double> kMagMaxHeadingDeviation{"estimator.mag.max_heading_deviation",
+                                                kDefaults.mag_max_heading_deviation_deg, {0, 180},
+                                                "a field whose heading disagrees with the state's by more is disturbed "
+                                                "[deg]"};
+const ConfigKey<double> kMagMaxDisturbance{"estimator.mag.max_disturbance", kDefaults.mag_max_disturbance_s, {0, 3600},
+                                           "a field disagreeing for longer than this is trusted again [s]"};
+
+// Features and depth.
+const ConfigKey<double> kFarThreshold{"estimator.features.far_threshold", kDefaults.far_threshold_m, {0.1, 1000},
+                                      "features farther than this are far features [m]"};
+const ConfigKey<double> kFarDepthSigmaScale{"estimator.features.far_depth_sigma_scale", kDefaults.far_depth_sigma_scale,
+                                            {0, 1e6}, "a free far feature's weak inverse-depth prior: the depth sigma "
+                                                      "times this (0: none)"};
+const ConfigKey<std::string> kFarPolicy =
+    enum_key("estimator.features.far_policy", "free", kFarPolicyNames, "far features' depth: estimated (free) or fixed");
+const ConfigKey<double> kPixelSigma{"estimator.features.pixel_sigma", kDefaults.pixel_sigma_px, {1e-3, 100},
+                                    "feature measurement sigma [px]"};
+const ConfigKey<int> kMinVisual{"estimator.features.min_visual", kDefaults.min_visual_features, 0, 10000,
+                                "below this many features with visual factors the frame is IMU-only"};
+const ConfigKey<std::string> kAnchorBearing =
+    enum_key("estimator.features.anchor_bearing", to_string(kDefaults.anchor_bearing), kAnchorBearingNames,
+             "a landmark's bearing in its anchor frame: fixed or estimated");
+const ConfigKey<std::string> kLeavingAnchor =
+    enum_key("estimator.features.leaving_anchor", to_string(kDefaults.leaving_anchor), kLeavingAnchorNames,
+             "a track whose anchor keyframe is marginalized: reuse, restart or reanchor");
+const ConfigKey<double> kDisparitySigma{"estimator.depth.disparity_sigma", kDefaults.disparity_sigma_px, {0, 100},
+                                        "depth noise as a disparity sigma [px]; 0: the calibration's"};
+const ConfigKey<double> kDepthBaseline{"estimator.depth.baseline", kDefaults.depth_baseline_m, {0, 10},
+                                       "stereo baseline of the depth noise [m]; 0: the calibration's"};
+const ConfigKey<std::string> kPointCovariance =
+    enum_key("estimator.depth.point_covariance", "full", kDepth3dCovarianceNames,
+             "covariance of the depth-augmented 3D factor's point: full or the paper's");
+
+// Keyframes, loss, solver.
+const ConfigKey<double> kKeyframeParallax{"estimator.keyframe.parallax", kDefaults.keyframe_parallax_px, {0, 1000},
+                                          "mean parallax to the last keyframe that makes a keyframe [px]"};
+const ConfigKey<int> kKeyframeMinTracked{"estimator.keyframe.min_tracked", kDefaults.keyframe_min_tracked, 0, 10000,
+                                         "fewer common tracks than this make a keyframe"};
+const ConfigKey<double> kKeyframeMaxInterval{"estimator.keyframe.max_interval", kDefaults.keyframe_max_interval_s,
+                                             {0.01, 100}, "a keyframe at least this often [s]"};
+const ConfigKey<std::string> kLoss =
+    enum_key("estimator.loss.type", "cauchy", kLossNames, "robust loss of the visual factors");
+const ConfigKey<double> kLossScale{"estimator.loss.scale", kDefaults.loss_scale, {1e-3, 1e3},
+                                   "scale of the robust loss [sigma]"};
+const ConfigKey<std::string> kLinearSolver =
+    enum_key("estimator.solver.linear_solver", "dense_schur", kLinearSolverNames, "Ceres linear solver");
+const ConfigKey<int> kMaxIterations{"estimator.solver.max_iterations", kDefaults.max_iterations, 1, 1000,
+                                    "solver iterations per frame at most"};
+const ConfigKey<double> kMaxSolverTime{"estimator.solver.max_time", kDefaults.max_solver_time_s, {0, 60},
+                                       "solver time limit per frame [s]; 0: none (machine-independent results)"};
+const ConfigKey<std::string> kNonKeyframes =
+    enum_key("estimator.solver.non_keyframes", to_string(kDefaults.non_keyframe_solve), kNonKeyframeSolveNames,
+             "a non-keyframe is solved with the window or alone against it (newest)");
+const ConfigKey<std::string> kSchurOrdering =
+    enum_key("estimator.solver.schur_ordering", to_string(kDefaults.schur_ordering), kSchurOrderingNames,
+             "elimination ordering of the Schur solvers");
+const ConfigKey<bool> kMarginalization{"estimator.marginalization", kDefaults.marginalization,
+                                       "keep a marginalization prior of the states leaving the window"};
+const ConfigKey<bool> kResidualDiagnostics{"estimator.diagnostics.residuals", kDefaults.residual_diagnostics,
+                                           "accumulate whitened residual statistics per factor type"};
+const ConfigKey<std::string> kCovariance =
+    enum_key("estimator.covariance", "schur", kCovarianceMethodNames, "how the newest state's covariance is computed");
+const ConfigKey<std::string> kCovarianceWeights =
+    enum_key("estimator.covariance_weights", "inliers", kCovarianceWeightsNames,
+             "visual factor weights of the covariance: robust or inliers");
+const ConfigKey<std::string> kPriorWeights =
+    enum_key("estimator.prior_weights", "inliers", kCovarianceWeightsNames,
+             "visual factor weights of the marginalization prior: robust or inliers");
+
+// Initialization.
+const ConfigKey<std::string> kInitMethod =
+    enum_key("estimator.initialization.method", "still", kInitializationNames,
+             "initialization: still start, hybrid PnP (hpnp) or 3D-2D PnP");
+const ConfigKey<double> kStillDuration{"estimator.initialization.still_duration", kDefaults.still_duration_s,
+                                       {0.05, 60}, "still: IMU data averaged for gravity [s]"};
+const ConfigKey<double> kInitSigmaRollPitch{"estimator.initialization.sigma_roll_pitch",
+                                            kDefaults.init_sigma_roll_pitch_rad, {1e-6, 1},
+                                            "initial roll and pitch sigma [rad]"};
+const ConfigKey<double> kInitSigmaVelocity{"estimator.initialization.sigma_velocity", kDefaults.init_sigma_velocity,
+                                           {1e-6, 10}, "initial velocity sigma [m/s]"};
+const ConfigKey<double> kInitSigmaGyroBias{"estimator.initialization.sigma_gyro_bias", kDefaults.init_sigma_gyro_bias,
+                                           {1e-8, 1}, "initial gyro bias sigma [rad/s]"};
+const ConfigKey<double> kInitSigmaAccelBias{"estimator.initialization.sigma_accel_bias", kDefaults.init_sigma_accel_bias,
+                                            {1e-8, 10}, "initial accelerometer bias sigma [m/s^2]"};
+const ConfigKey<bool> kStillGyroBias{"estimator.initialization.still_gyro_bias", kDefaults.still_gyro_bias,
+                                     "still: the mean gyro over a camera-confirmed still window is the gyro bias"};
+const ConfigKey<double> kStillMaxMotion{"estimator.initialization.still_max_motion_px", kDefaults.still_max_motion_px,
+                                        {0, 100}, "still: tracks moving at most this (median) confirm the still window "
+                                                  "[px]"};
+const ConfigKey<double> kLostAfter{"estimator.lost_after", kDefaults.lost_after_s, {0, kInf},
+                                   "IMU-only for longer than this: mode lost [s]"};
+
+// Failure detection and restart.
+const ConfigKey<bool> kFailureDetection{"estimator.failure.detection", kDefaults.failure_detection,
+                                        "failure detection after every solve, with a restart"};
+const ConfigKey<double> kMaxAccelBias{"estimator.failure.max_accel_bias", kFailure.max_accel_bias, {1e-3, kInf},
+                                      "failure: accelerometer bias above this [m/s^2]"};
+const ConfigKey<double> kMaxGyroBias{"estimator.failure.max_gyro_bias", kFailure.max_gyro_bias, {1e-4, kInf},
+                                     "failure: gyro bias above this [rad/s]"};
+const ConfigKey<double> kMaxPositionJump{"estimator.failure.max_position_jump", kFailure.max_position_jump_m,
+                                         {1e-3, kInf}, "failure: position jump between estimates beyond the motion [m]"};
+const ConfigKey<double> kMaxRotationJump{"estimator.failure.max_rotation_jump", kFailure.max_rotation_jump_rad,
+                                         {1e-3, M_PI}, "failure: rotation between consecutive estimates [rad]"};
+const ConfigKey<double> kMaxSpeed{"estimator.failure.max_speed", kFailure.max_speed_mps, {1e-2, kInf},
+                                  "failure: speed above this [m/s]"};
+const ConfigKey<double> kMinInlierFraction{"estimator.failure.min_inlier_fraction", kFailure.min_inlier_fraction, {0, 1},
+                                           "failure: share of visual residuals inside the gate below this"};
+const ConfigKey<double> kCollapseFrom{"estimator.failure.collapse_from", kFailure.collapse_from, {0, 1},
+                                      "the inlier test applies after the last second's median share was at least "
+                                      "this"};
+const ConfigKey<int> kMinVisualResiduals{"estimator.failure.min_visual_residuals", kFailure.min_visual_residuals, 1,
+                                         100000, "the inlier test needs at least this many visual residual blocks"};
+const ConfigKey<double> kConfirmedInlierFraction{"estimator.failure.confirmed_inlier_fraction",
+                                                 kDefaults.confirmed_inlier_fraction, {0, 1},
+                                                 "a restart starts from an estimate vision confirmed with this inlier "
+                                                 "share"};
+const ConfigKey<double> kRestartMaxGap{"estimator.failure.restart_max_gap", kDefaults.restart_max_gap_s, {0, 60},
+                                       "... found within this time before the failed frame [s]"};
+const ConfigKey<double> kRestartAccelDensity{"estimator.failure.restart_accel_density", kDefaults.restart_accel_density,
+                                             {0, 100}, "the walker's acceleration over the restart gap as white noise "
+                                                       "[m/s^2/sqrt(s)]"};
+const ConfigKey<double> kRestartSigmaVelocity{"estimator.failure.restart_sigma_velocity",
+                                              kDefaults.restart_sigma_velocity, {0, 100},
+                                              "uncertainty added to the restart estimate's velocity [m/s]"};
+
+// Online calibration.
+const ConfigKey<bool> kEstimateExtrinsic{"estimator.extrinsic.estimate", kDefaults.estimate_extrinsic,
+                                         "estimate the camera-IMU extrinsic online"};
+const ConfigKey<double> kExtrinsicSigmaRotation{"estimator.extrinsic.sigma_rotation",
+                                                kDefaults.extrinsic_sigma_rotation_rad, {1e-6, 1},
+                                                "prior sigma of the extrinsic rotation [rad]"};
+const ConfigKey<double> kExtrinsicSigmaTranslation{"estimator.extrinsic.sigma_translation",
+                                                   kDefaults.extrinsic_sigma_translation_m, {1e-6, 1},
+                                                   "prior sigma of the extrinsic translation [m]"};
+const ConfigKey<bool> kEstimateTimeOffset{"estimator.time_offset.estimate", kDefaults.estimate_time_offset,
+                                          "estimate the camera-IMU time offset online"};
+const ConfigKey<double> kTimeOffsetSigma{"estimator.time_offset.sigma", kDefaults.time_offset_sigma_s, {1e-6, 0.1},
+                                         "prior sigma of the time offset [s]"};
+
 void read_mag(const Config& c, EstimatorConfig& e) {
   const char* ref_key = "estimator.mag.reference_field";
-  e.mag_reference_field_enu = get_vec3(c, ref_key, e.mag_reference_field_enu, {-1e-3, 1e-3});
+  e.mag_reference_field_enu = get_vec3(c, kMagReference);
   // The factor needs a heading: a field without a horizontal part (or given in microtesla by
   // mistake, caught by the range above) cannot define one.
   const Vec3& m = e.mag_reference_field_enu;
   if (!(m.head<2>().norm() >= 1e-3 * m.norm()) || !(m.head<2>().norm() > 1e-9))
     throw ConfigError(c.origin(ref_key), ref_key,
                       "needs a horizontal component: [east, north, up] in tesla, e.g. [0, 20e-6, -45e-6]");
-  e.mag_hard_iron = get_vec3(c, "estimator.mag.hard_iron", e.mag_hard_iron, {-1e-3, 1e-3});
+  e.mag_hard_iron = get_vec3(c, kMagHardIron);
   const char* soft_key = "estimator.mag.soft_iron";
   if (c.has(soft_key)) {
-    const auto v = c.get_doubles(soft_key, 9, {-100, 100});
+    const auto v = get(c, kMagSoftIron);
     for (int i = 0; i < 9; ++i) e.mag_soft_iron(i / 3, i % 3) = v[static_cast<std::size_t>(i)];
     const Mat3& A = e.mag_soft_iron;
     const Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (A + A.transpose()));
@@ -106,130 +333,200 @@ void read_mag(const Config& c, EstimatorConfig& e) {
       throw ConfigError(c.origin(soft_key), soft_key,
                         "must be near symmetric positive definite (9 numbers row by row; eigenvalue ratio > 1e-3)");
   }
-  e.mag_sigma = c.get_double("estimator.mag.sigma", e.mag_sigma, {1e-10, 1e-4});
-  e.mag_max_time_offset_s = c.get_double("estimator.mag.max_time_offset", e.mag_max_time_offset_s, {0, 1});
-  e.mag_max_norm_deviation = c.get_double("estimator.mag.max_norm_deviation", e.mag_max_norm_deviation, {0, 10});
-  e.mag_max_inclination_deviation_deg =
-      c.get_double("estimator.mag.max_inclination_deviation", e.mag_max_inclination_deviation_deg, {0, 180});
-  e.mag_max_heading_deviation_deg =
-      c.get_double("estimator.mag.max_heading_deviation", e.mag_max_heading_deviation_deg, {0, 180});
-  e.mag_max_disturbance_s = c.get_double("estimator.mag.max_disturbance", e.mag_max_disturbance_s, {0, 3600});
+  e.mag_sigma = get(c, kMagSigma);
+  e.mag_max_time_offset_s = get(c, kMagMaxTimeOffset);
+  e.mag_max_norm_deviation = get(c, kMagMaxNormDeviation);
+  e.mag_max_inclination_deviation_deg = get(c, kMagMaxInclinationDeviation);
+  e.mag_max_heading_deviation_deg = get(c, kMagMaxHeadingDeviation);
+  e.mag_max_disturbance_s = get(c, kMagMaxDisturbance);
 }
 
 }  // namespace
 
+ConfigSchema estimator_config_schema() {
+  ConfigSchema s;
+  s.add(kWindowSize);
+  s.add(kUseImu);
+  s.add(kImuNoiseScale);
+  s.add(kImuRandomWalkScale);
+  s.add(kImuMaxSampleGap);
+  s.add(kImuGapGyroDensity);
+  s.add(kImuGapAccelDensity);
+  s.add(kUseReprojection);
+  s.add(kUseInverseDepth);
+  s.add(kUseDepth3d);
+  s.add(kUseGps);
+  s.add(kUseMag);
+  s.add(kUseZeroVelocity);
+  s.add(kZeroVelocitySigma);
+  s.add(kZeroVelocityMaxMotion);
+  s.add(kZeroVelocityLookback);
+  s.add(kZeroVelocityMaxSpeed);
+  s.add(kUseDepth);
+  s.add(kGpsMaxTimeOffset);
+  s.add(kGpsHuber);
+  s.add(kGpsCorrelationTime);
+  s.add(kGpsMode);
+  s.add(kGpsMultipathFraction);
+  s.add(kGpsOutlierGate);
+  s.add(kGpsMaxOutlier);
+  s.add(kGpsRegistrationFixes);
+  s.add(kMagReference);
+  s.add(kMagHardIron);
+  s.add(kMagSoftIron);
+  s.add(kMagSigma);
+  s.add(kMagMaxTimeOffset);
+  s.add(kMagMaxNormDeviation);
+  s.add(kMagMaxInclinationDeviation);
+  s.add(kMagMaxHeadingDeviation);
+  s.add(kMagMaxDisturbance);
+  s.add(kFarThreshold);
+  s.add(kFarDepthSigmaScale);
+  s.add(kFarPolicy);
+  s.add(kPixelSigma);
+  s.add(kMinVisual);
+  s.add(kAnchorBearing);
+  s.add(kLeavingAnchor);
+  s.add(kDisparitySigma);
+  s.add(kDepthBaseline);
+  s.add(kPointCovariance);
+  s.add(kKeyframeParallax);
+  s.add(kKeyframeMinTracked);
+  s.add(kKeyframeMaxInterval);
+  s.add(kLoss);
+  s.add(kLossScale);
+  s.add(kLinearSolver);
+  s.add(kMaxIterations);
+  s.add(kMaxSolverTime);
+  s.add(kNonKeyframes);
+  s.add(kSchurOrdering);
+  s.add(kMarginalization);
+  s.add(kResidualDiagnostics);
+  s.add(kCovariance);
+  s.add(kCovarianceWeights);
+  s.add(kPriorWeights);
+  s.add(kInitMethod);
+  s.add(kStillDuration);
+  s.add(kInitSigmaRollPitch);
+  s.add(kInitSigmaVelocity);
+  s.add(kInitSigmaGyroBias);
+  s.add(kInitSigmaAccelBias);
+  s.add(kStillGyroBias);
+  s.add(kStillMaxMotion);
+  s.add(kLostAfter);
+  s.add(kFailureDetection);
+  s.add(kMaxAccelBias);
+  s.add(kMaxGyroBias);
+  s.add(kMaxPositionJump);
+  s.add(kMaxRotationJump);
+  s.add(kMaxSpeed);
+  s.add(kMinInlierFraction);
+  s.add(kCollapseFrom);
+  s.add(kMinVisualResiduals);
+  s.add(kConfirmedInlierFraction);
+  s.add(kRestartMaxGap);
+  s.add(kRestartAccelDensity);
+  s.add(kRestartSigmaVelocity);
+  s.add(kEstimateExtrinsic);
+  s.add(kExtrinsicSigmaRotation);
+  s.add(kExtrinsicSigmaTranslation);
+  s.add(kEstimateTimeOffset);
+  s.add(kTimeOffsetSigma);
+  return s;
+}
+
+ConfigSchema config_schema() { return estimator_config_schema().add(frontend_config_schema()); }
+
 EstimatorConfig read_estimator_config(const Config& c) {
   EstimatorConfig e;
-  e.window_size = static_cast<int>(c.get_int("estimator.window_size", e.window_size, 2, 100));
+  e.window_size = get(c, kWindowSize);
 
-  e.use_imu = c.get_bool("estimator.factors.imu", e.use_imu);
-  e.imu_noise_scale = c.get_double("estimator.imu.noise_scale", e.imu_noise_scale, {1e-3, 1e3});
-  e.imu_random_walk_scale = c.get_double("estimator.imu.random_walk_scale", e.imu_random_walk_scale, {1e-3, 1e3});
-  e.imu_max_sample_gap_s = c.get_double("estimator.imu.max_sample_gap", e.imu_max_sample_gap_s, {0, 10});
-  e.imu_gap_gyro_density = c.get_double("estimator.imu.gap_gyro_density", e.imu_gap_gyro_density, {1e-4, 100});
-  e.imu_gap_accel_density = c.get_double("estimator.imu.gap_accel_density", e.imu_gap_accel_density, {1e-3, 1000});
-  e.use_reprojection = c.get_bool("estimator.factors.reprojection", e.use_reprojection);
-  e.use_inverse_depth = c.get_bool("estimator.factors.inverse_depth", e.use_inverse_depth);
-  e.use_depth_3d = c.get_bool("estimator.factors.depth_3d", e.use_depth_3d);
-  e.use_gps = c.get_bool("estimator.factors.gps", e.use_gps);
-  e.use_mag = c.get_bool("estimator.factors.mag", e.use_mag);
-  e.use_zero_velocity = c.get_bool("estimator.factors.zero_velocity", e.use_zero_velocity);
-  e.zero_velocity_sigma_mps = c.get_double("estimator.zero_velocity.sigma", e.zero_velocity_sigma_mps, {1e-6, 10});
-  e.zero_velocity_max_motion_px =
-      c.get_double("estimator.zero_velocity.max_motion_px", e.zero_velocity_max_motion_px, {0, 100});
-  e.zero_velocity_lookback_s = c.get_double("estimator.zero_velocity.lookback", e.zero_velocity_lookback_s, {0.01, 10});
-  e.zero_velocity_max_speed_mps =
-      c.get_double("estimator.zero_velocity.max_speed", e.zero_velocity_max_speed_mps, {0, 10});
-  e.use_depth = c.get_bool("estimator.depth.enabled", e.use_depth);
-  e.gps_max_time_offset_s = c.get_double("estimator.gps.max_time_offset", e.gps_max_time_offset_s, {0, 1});
-  e.gps_huber_threshold = c.get_double("estimator.gps.huber_threshold", e.gps_huber_threshold, {0.1, 100});
-  e.gps_correlation_time_s = c.get_double("estimator.gps.correlation_time", e.gps_correlation_time_s, {0, 1e4});
-  e.gps_mode = get_enum(c, "estimator.gps.mode", "joint", kGpsModeNames);
-  e.gps_multipath_fraction = c.get_double("estimator.gps.multipath_fraction", e.gps_multipath_fraction, {0, 0.95});
-  e.gps_outlier_gate = c.get_double("estimator.gps.outlier_gate", e.gps_outlier_gate, {0, 1e6});
-  e.gps_max_outlier_s = c.get_double("estimator.gps.max_outlier", e.gps_max_outlier_s, {0, 1e4});
-  e.gps_registration_fixes =
-      static_cast<int>(c.get_int("estimator.gps.registration_fixes", e.gps_registration_fixes, 0, 1000000));
+  e.use_imu = get(c, kUseImu);
+  e.imu_noise_scale = get(c, kImuNoiseScale);
+  e.imu_random_walk_scale = get(c, kImuRandomWalkScale);
+  e.imu_max_sample_gap_s = get(c, kImuMaxSampleGap);
+  e.imu_gap_gyro_density = get(c, kImuGapGyroDensity);
+  e.imu_gap_accel_density = get(c, kImuGapAccelDensity);
+  e.use_reprojection = get(c, kUseReprojection);
+  e.use_inverse_depth = get(c, kUseInverseDepth);
+  e.use_depth_3d = get(c, kUseDepth3d);
+  e.use_gps = get(c, kUseGps);
+  e.use_mag = get(c, kUseMag);
+  e.use_zero_velocity = get(c, kUseZeroVelocity);
+  e.zero_velocity_sigma_mps = get(c, kZeroVelocitySigma);
+  e.zero_velocity_max_motion_px = get(c, kZeroVelocityMaxMotion);
+  e.zero_velocity_lookback_s = get(c, kZeroVelocityLookback);
+  e.zero_velocity_max_speed_mps = get(c, kZeroVelocityMaxSpeed);
+  e.use_depth = get(c, kUseDepth);
+  e.gps_max_time_offset_s = get(c, kGpsMaxTimeOffset);
+  e.gps_huber_threshold = get(c, kGpsHuber);
+  e.gps_correlation_time_s = get(c, kGpsCorrelationTime);
+  e.gps_mode = get_enum(c, kGpsMode, kGpsModeNames);
+  e.gps_multipath_fraction = get(c, kGpsMultipathFraction);
+  e.gps_outlier_gate = get(c, kGpsOutlierGate);
+  e.gps_max_outlier_s = get(c, kGpsMaxOutlier);
+  e.gps_registration_fixes = get(c, kGpsRegistrationFixes);
   read_mag(c, e);
 
-  e.far_threshold_m = c.get_double("estimator.features.far_threshold", e.far_threshold_m, {0.1, 1000});
-  e.far_depth_sigma_scale =
-      c.get_double("estimator.features.far_depth_sigma_scale", e.far_depth_sigma_scale, {0, 1e6});
-  e.far_policy = get_enum(c, "estimator.features.far_policy", "free", kFarPolicyNames);
-  e.pixel_sigma_px = c.get_double("estimator.features.pixel_sigma", e.pixel_sigma_px, {1e-3, 100});
-  e.min_visual_features =
-      static_cast<int>(c.get_int("estimator.features.min_visual", e.min_visual_features, 0, 10000));
-  e.anchor_bearing =
-      get_enum(c, "estimator.features.anchor_bearing", to_string(e.anchor_bearing), kAnchorBearingNames);
-  e.leaving_anchor =
-      get_enum(c, "estimator.features.leaving_anchor", to_string(e.leaving_anchor), kLeavingAnchorNames);
-  e.disparity_sigma_px = c.get_double("estimator.depth.disparity_sigma", e.disparity_sigma_px, {0, 100});
-  e.depth_baseline_m = c.get_double("estimator.depth.baseline", e.depth_baseline_m, {0, 10});
-  e.depth_3d_covariance = get_enum(c, "estimator.depth.point_covariance", "full", kDepth3dCovarianceNames);
+  e.far_threshold_m = get(c, kFarThreshold);
+  e.far_depth_sigma_scale = get(c, kFarDepthSigmaScale);
+  e.far_policy = get_enum(c, kFarPolicy, kFarPolicyNames);
+  e.pixel_sigma_px = get(c, kPixelSigma);
+  e.min_visual_features = get(c, kMinVisual);
+  e.anchor_bearing = get_enum(c, kAnchorBearing, kAnchorBearingNames);
+  e.leaving_anchor = get_enum(c, kLeavingAnchor, kLeavingAnchorNames);
+  e.disparity_sigma_px = get(c, kDisparitySigma);
+  e.depth_baseline_m = get(c, kDepthBaseline);
+  e.depth_3d_covariance = get_enum(c, kPointCovariance, kDepth3dCovarianceNames);
 
-  e.keyframe_parallax_px = c.get_double("estimator.keyframe.parallax", e.keyframe_parallax_px, {0, 1000});
-  e.keyframe_min_tracked =
-      static_cast<int>(c.get_int("estimator.keyframe.min_tracked", e.keyframe_min_tracked, 0, 10000));
-  e.keyframe_max_interval_s =
-      c.get_double("estimator.keyframe.max_interval", e.keyframe_max_interval_s, {0.01, 100});
+  e.keyframe_parallax_px = get(c, kKeyframeParallax);
+  e.keyframe_min_tracked = get(c, kKeyframeMinTracked);
+  e.keyframe_max_interval_s = get(c, kKeyframeMaxInterval);
 
-  e.loss = get_enum(c, "estimator.loss.type", "cauchy", kLossNames);
-  e.loss_scale = c.get_double("estimator.loss.scale", e.loss_scale, {1e-3, 1e3});
+  e.loss = get_enum(c, kLoss, kLossNames);
+  e.loss_scale = get(c, kLossScale);
 
-  e.linear_solver = get_enum(c, "estimator.solver.linear_solver", "dense_schur", kLinearSolverNames);
-  e.max_iterations = static_cast<int>(c.get_int("estimator.solver.max_iterations", e.max_iterations, 1, 1000));
-  e.max_solver_time_s = c.get_double("estimator.solver.max_time", e.max_solver_time_s, {0, 60});
-  e.non_keyframe_solve =
-      get_enum(c, "estimator.solver.non_keyframes", to_string(e.non_keyframe_solve), kNonKeyframeSolveNames);
-  e.schur_ordering =
-      get_enum(c, "estimator.solver.schur_ordering", to_string(e.schur_ordering), kSchurOrderingNames);
+  e.linear_solver = get_enum(c, kLinearSolver, kLinearSolverNames);
+  e.max_iterations = get(c, kMaxIterations);
+  e.max_solver_time_s = get(c, kMaxSolverTime);
+  e.non_keyframe_solve = get_enum(c, kNonKeyframes, kNonKeyframeSolveNames);
+  e.schur_ordering = get_enum(c, kSchurOrdering, kSchurOrderingNames);
 
-  e.marginalization = c.get_bool("estimator.marginalization", e.marginalization);
-  e.residual_diagnostics = c.get_bool("estimator.diagnostics.residuals", e.residual_diagnostics);
-  e.covariance_method = get_enum(c, "estimator.covariance", "schur", kCovarianceMethodNames);
-  e.covariance_weights = get_enum(c, "estimator.covariance_weights", "inliers", kCovarianceWeightsNames);
-  e.prior_weights = get_enum(c, "estimator.prior_weights", "inliers", kCovarianceWeightsNames);
+  e.marginalization = get(c, kMarginalization);
+  e.residual_diagnostics = get(c, kResidualDiagnostics);
+  e.covariance_method = get_enum(c, kCovariance, kCovarianceMethodNames);
+  e.covariance_weights = get_enum(c, kCovarianceWeights, kCovarianceWeightsNames);
+  e.prior_weights = get_enum(c, kPriorWeights, kCovarianceWeightsNames);
 
-  e.init_method = get_enum(c, "estimator.initialization.method", "still", kInitializationNames);
-  e.still_duration_s = c.get_double("estimator.initialization.still_duration", e.still_duration_s, {0.05, 60});
-  e.init_sigma_roll_pitch_rad =
-      c.get_double("estimator.initialization.sigma_roll_pitch", e.init_sigma_roll_pitch_rad, {1e-6, 1});
-  e.init_sigma_velocity = c.get_double("estimator.initialization.sigma_velocity", e.init_sigma_velocity, {1e-6, 10});
-  e.init_sigma_gyro_bias =
-      c.get_double("estimator.initialization.sigma_gyro_bias", e.init_sigma_gyro_bias, {1e-8, 1});
-  e.init_sigma_accel_bias =
-      c.get_double("estimator.initialization.sigma_accel_bias", e.init_sigma_accel_bias, {1e-8, 10});
-  e.still_gyro_bias = c.get_bool("estimator.initialization.still_gyro_bias", e.still_gyro_bias);
-  e.still_max_motion_px =
-      c.get_double("estimator.initialization.still_max_motion_px", e.still_max_motion_px, {0, 100});
-  e.lost_after_s = c.get_double("estimator.lost_after", e.lost_after_s, {0, kInf});
-  e.failure_detection = c.get_bool("estimator.failure.detection", e.failure_detection);
+  e.init_method = get_enum(c, kInitMethod, kInitializationNames);
+  e.still_duration_s = get(c, kStillDuration);
+  e.init_sigma_roll_pitch_rad = get(c, kInitSigmaRollPitch);
+  e.init_sigma_velocity = get(c, kInitSigmaVelocity);
+  e.init_sigma_gyro_bias = get(c, kInitSigmaGyroBias);
+  e.init_sigma_accel_bias = get(c, kInitSigmaAccelBias);
+  e.still_gyro_bias = get(c, kStillGyroBias);
+  e.still_max_motion_px = get(c, kStillMaxMotion);
+  e.lost_after_s = get(c, kLostAfter);
+  e.failure_detection = get(c, kFailureDetection);
   FailureThresholds& f = e.failure;
-  f.max_accel_bias = c.get_double("estimator.failure.max_accel_bias", f.max_accel_bias, {1e-3, kInf});
-  f.max_gyro_bias = c.get_double("estimator.failure.max_gyro_bias", f.max_gyro_bias, {1e-4, kInf});
-  f.max_position_jump_m = c.get_double("estimator.failure.max_position_jump", f.max_position_jump_m, {1e-3, kInf});
-  f.max_rotation_jump_rad =
-      c.get_double("estimator.failure.max_rotation_jump", f.max_rotation_jump_rad, {1e-3, M_PI});
-  f.max_speed_mps = c.get_double("estimator.failure.max_speed", f.max_speed_mps, {1e-2, kInf});
-  f.min_inlier_fraction = c.get_double("estimator.failure.min_inlier_fraction", f.min_inlier_fraction, {0, 1});
-  f.collapse_from = c.get_double("estimator.failure.collapse_from", f.collapse_from, {0, 1});
-  f.min_visual_residuals = static_cast<int>(
-      c.get_int("estimator.failure.min_visual_residuals", f.min_visual_residuals, 1, 100000));
-  e.confirmed_inlier_fraction =
-      c.get_double("estimator.failure.confirmed_inlier_fraction", e.confirmed_inlier_fraction, {0, 1});
-  e.restart_max_gap_s = c.get_double("estimator.failure.restart_max_gap", e.restart_max_gap_s, {0, 60});
-  e.restart_accel_density =
-      c.get_double("estimator.failure.restart_accel_density", e.restart_accel_density, {0, 100});
-  e.restart_sigma_velocity =
-      c.get_double("estimator.failure.restart_sigma_velocity", e.restart_sigma_velocity, {0, 100});
+  f.max_accel_bias = get(c, kMaxAccelBias);
+  f.max_gyro_bias = get(c, kMaxGyroBias);
+  f.max_position_jump_m = get(c, kMaxPositionJump);
+  f.max_rotation_jump_rad = get(c, kMaxRotationJump);
+  f.max_speed_mps = get(c, kMaxSpeed);
+  f.min_inlier_fraction = get(c, kMinInlierFraction);
+  f.collapse_from = get(c, kCollapseFrom);
+  f.min_visual_residuals = get(c, kMinVisualResiduals);
+  e.confirmed_inlier_fraction = get(c, kConfirmedInlierFraction);
+  e.restart_max_gap_s = get(c, kRestartMaxGap);
+  e.restart_accel_density = get(c, kRestartAccelDensity);
+  e.restart_sigma_velocity = get(c, kRestartSigmaVelocity);
 
-  e.estimate_extrinsic = c.get_bool("estimator.extrinsic.estimate", e.estimate_extrinsic);
-  e.extrinsic_sigma_rotation_rad =
-      c.get_double("estimator.extrinsic.sigma_rotation", e.extrinsic_sigma_rotation_rad, {1e-6, 1});
-  e.extrinsic_sigma_translation_m =
-      c.get_double("estimator.extrinsic.sigma_translation", e.extrinsic_sigma_translation_m, {1e-6, 1});
-  e.estimate_time_offset = c.get_bool("estimator.time_offset.estimate", e.estimate_time_offset);
-  e.time_offset_sigma_s = c.get_double("estimator.time_offset.sigma", e.time_offset_sigma_s, {1e-6, 0.1});
+  e.estimate_extrinsic = get(c, kEstimateExtrinsic);
+  e.extrinsic_sigma_rotation_rad = get(c, kExtrinsicSigmaRotation);
+  e.extrinsic_sigma_translation_m = get(c, kExtrinsicSigmaTranslation);
+  e.estimate_time_offset = get(c, kEstimateTimeOffset);
+  e.time_offset_sigma_s = get(c, kTimeOffsetSigma);
   return e;
 }
 

@@ -8,14 +8,15 @@
 
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/estimation/config_schema.hpp"
 
 namespace navaid::estimation {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr long long kIntMin = std::numeric_limits<int>::min();
-constexpr long long kIntMax = std::numeric_limits<int>::max();
+constexpr int kIntMin = std::numeric_limits<int>::min();
+constexpr int kIntMax = std::numeric_limits<int>::max();
 
 const CameraCalibration& find_camera(const RigCalibration& rig, const std::string& name) {
   if (rig.cameras.empty()) throw ConfigError("calibration", "cameras", "the front end needs a camera");
@@ -41,39 +42,118 @@ Vec3 rate_at(const std::vector<ImuSample>& imu, std::size_t i, Timestamp t) {
 
 }  // namespace
 
+namespace {
+
+// The ranges are validate()'s (its errors are re-addressed to the key below), so the keys
+// themselves accept any number.
+const FrontendConfig kDefaults;
+const ConfigKey<int> kMaxFeatures{"frontend.max_features", kDefaults.max_features, kIntMin, kIntMax,
+                          "tracks kept per frame, >= 1"};
+const ConfigKey<double> kMinDistancePx{"frontend.min_distance_px", kDefaults.min_distance_px, {-kInf, kInf},
+                             "minimum distance between features [px], >= 0"};
+const ConfigKey<double> kQualityLevel{"frontend.quality_level", kDefaults.quality_level, {-kInf, kInf},
+                             "Shi-Tomasi quality relative to the best corner, in (0, 1)"};
+const ConfigKey<int> kCornerBlockSize{"frontend.corner_block_size", kDefaults.corner_block_size, kIntMin, kIntMax,
+                          "structure-tensor window [px], odd, >= 3"};
+const ConfigKey<int> kDetectMinMissing{"frontend.detect_min_missing", kDefaults.detect_min_missing, kIntMin, kIntMax,
+                          "detect only when at least this many tracks are missing, in [1, max_features]"};
+const ConfigKey<int> kDepthEdgeMarginPx{"frontend.depth_edge_margin_px", kDefaults.depth_edge_margin_px, kIntMin, kIntMax,
+                          "no new corners this near a depth discontinuity [px]; 0 = off"};
+const ConfigKey<double> kDepthEdgeRelativeJump{"frontend.depth_edge_relative_jump", kDefaults.depth_edge_relative_jump, {-kInf, kInf},
+                             "3x3 depth jump / nearer depth that marks an edge, > 0"};
+const ConfigKey<int> kKltWindowPx{"frontend.klt_window_px", kDefaults.klt_window_px, kIntMin, kIntMax,
+                          "KLT square search window side [px], odd, >= 5"};
+const ConfigKey<int> kKltMaxLevel{"frontend.klt_max_level", kDefaults.klt_max_level, kIntMin, kIntMax,
+                          "KLT pyramid levels above full resolution, in [0, 8]"};
+const ConfigKey<int> kKltMaxIterations{"frontend.klt_max_iterations", kDefaults.klt_max_iterations, kIntMin, kIntMax,
+                          "KLT iterations per level, >= 1"};
+const ConfigKey<double> kKltEpsilon{"frontend.klt_epsilon", kDefaults.klt_epsilon, {-kInf, kInf},
+                             "KLT iteration stop on the update [px], > 0"};
+const ConfigKey<bool> kForwardBackwardCheck{"frontend.forward_backward_check", kDefaults.forward_backward_check, "track back and drop points that do not return"};
+const ConfigKey<double> kFbThresholdPx{"frontend.fb_threshold_px", kDefaults.fb_threshold_px, {-kInf, kInf},
+                             "forward-backward limit [px], > 0"};
+const ConfigKey<int> kFbMaxLevel{"frontend.fb_max_level", kDefaults.fb_max_level, kIntMin, kIntMax,
+                          "pyramid levels of the backward pass, in [0, 8]"};
+const ConfigKey<int> kKltThreads{"frontend.klt_threads", kDefaults.klt_threads, kIntMin, kIntMax,
+                          "threads a KLT pass splits its points over, in [1, 16] (same result)"};
+const ConfigKey<bool> kRansac{"frontend.ransac", kDefaults.ransac, "fundamental-matrix RANSAC on undistorted points"};
+const ConfigKey<double> kRansacThresholdPx{"frontend.ransac_threshold_px", kDefaults.ransac_threshold_px, {-kInf, kInf},
+                             "RANSAC epipolar distance limit [px], > 0"};
+const ConfigKey<double> kRansacConfidence{"frontend.ransac_confidence", kDefaults.ransac_confidence, {-kInf, kInf},
+                             "RANSAC confidence, in (0, 1)"};
+const ConfigKey<double> kBorderPx{"frontend.border_px", kDefaults.border_px, {-kInf, kInf},
+                             "tracks closer than this to the image edge are dropped [px], >= 0"};
+const ConfigKey<bool> kImuPrediction{"frontend.imu_prediction", kDefaults.imu_prediction, "predict KLT's start from the gyro rotation"};
+const ConfigKey<int> kDepthPatchSize{"frontend.depth_patch_size", kDefaults.depth_patch_size, kIntMin, kIntMax,
+                          "depth association patch: 3 or 5"};
+const ConfigKey<double> kDepthMaxRelativeSpread{"frontend.depth_max_relative_spread", kDefaults.depth_max_relative_spread, {-kInf, kInf},
+                             "(max - min) / median of the patch's valid depths, > 0"};
+const ConfigKey<int> kDepthMinValid{"frontend.depth_min_valid", kDefaults.depth_min_valid, kIntMin, kIntMax,
+                          "valid pixels needed in the depth patch, in [1, patch^2]"};
+const ConfigKey<double> kKeyframeParallaxPx{"frontend.keyframe_parallax_px", kDefaults.keyframe_parallax_px, {-kInf, kInf},
+                             "front-end keyframe: average parallax since the last keyframe [px], > 0"};
+const ConfigKey<int> kKeyframeMinTracked{"frontend.keyframe_min_tracked", kDefaults.keyframe_min_tracked, kIntMin, kIntMax,
+                          "front-end keyframe: fewer common tracks than this, >= 0"};
+
+}  // namespace
+
+ConfigSchema frontend_config_schema() {
+  ConfigSchema s;
+  s.add(kMaxFeatures);
+  s.add(kMinDistancePx);
+  s.add(kQualityLevel);
+  s.add(kCornerBlockSize);
+  s.add(kDetectMinMissing);
+  s.add(kDepthEdgeMarginPx);
+  s.add(kDepthEdgeRelativeJump);
+  s.add(kKltWindowPx);
+  s.add(kKltMaxLevel);
+  s.add(kKltMaxIterations);
+  s.add(kKltEpsilon);
+  s.add(kForwardBackwardCheck);
+  s.add(kFbThresholdPx);
+  s.add(kFbMaxLevel);
+  s.add(kKltThreads);
+  s.add(kRansac);
+  s.add(kRansacThresholdPx);
+  s.add(kRansacConfidence);
+  s.add(kBorderPx);
+  s.add(kImuPrediction);
+  s.add(kDepthPatchSize);
+  s.add(kDepthMaxRelativeSpread);
+  s.add(kDepthMinValid);
+  s.add(kKeyframeParallaxPx);
+  s.add(kKeyframeMinTracked);
+  return s;
+}
+
 FrontendConfig read_frontend_config(const Config& c) {
   FrontendConfig f;
-  const auto get_int = [&](const char* name, int fallback) {
-    return static_cast<int>(c.get_int(std::string("frontend.") + name, fallback, kIntMin, kIntMax));
-  };
-  const auto get_double = [&](const char* name, double fallback) {
-    return c.get_double(std::string("frontend.") + name, fallback, {-kInf, kInf});
-  };
-  f.max_features = get_int("max_features", f.max_features);
-  f.min_distance_px = get_double("min_distance_px", f.min_distance_px);
-  f.quality_level = get_double("quality_level", f.quality_level);
-  f.corner_block_size = get_int("corner_block_size", f.corner_block_size);
-  f.detect_min_missing = get_int("detect_min_missing", f.detect_min_missing);
-  f.depth_edge_margin_px = get_int("depth_edge_margin_px", f.depth_edge_margin_px);
-  f.depth_edge_relative_jump = get_double("depth_edge_relative_jump", f.depth_edge_relative_jump);
-  f.klt_window_px = get_int("klt_window_px", f.klt_window_px);
-  f.klt_max_level = get_int("klt_max_level", f.klt_max_level);
-  f.klt_max_iterations = get_int("klt_max_iterations", f.klt_max_iterations);
-  f.klt_epsilon = get_double("klt_epsilon", f.klt_epsilon);
-  f.forward_backward_check = c.get_bool("frontend.forward_backward_check", f.forward_backward_check);
-  f.fb_threshold_px = get_double("fb_threshold_px", f.fb_threshold_px);
-  f.fb_max_level = get_int("fb_max_level", f.fb_max_level);
-  f.klt_threads = get_int("klt_threads", f.klt_threads);
-  f.ransac = c.get_bool("frontend.ransac", f.ransac);
-  f.ransac_threshold_px = get_double("ransac_threshold_px", f.ransac_threshold_px);
-  f.ransac_confidence = get_double("ransac_confidence", f.ransac_confidence);
-  f.border_px = get_double("border_px", f.border_px);
-  f.imu_prediction = c.get_bool("frontend.imu_prediction", f.imu_prediction);
-  f.depth_patch_size = get_int("depth_patch_size", f.depth_patch_size);
-  f.depth_max_relative_spread = get_double("depth_max_relative_spread", f.depth_max_relative_spread);
-  f.depth_min_valid = get_int("depth_min_valid", f.depth_min_valid);
-  f.keyframe_parallax_px = get_double("keyframe_parallax_px", f.keyframe_parallax_px);
-  f.keyframe_min_tracked = get_int("keyframe_min_tracked", f.keyframe_min_tracked);
+  f.max_features = get(c, kMaxFeatures);
+  f.min_distance_px = get(c, kMinDistancePx);
+  f.quality_level = get(c, kQualityLevel);
+  f.corner_block_size = get(c, kCornerBlockSize);
+  f.detect_min_missing = get(c, kDetectMinMissing);
+  f.depth_edge_margin_px = get(c, kDepthEdgeMarginPx);
+  f.depth_edge_relative_jump = get(c, kDepthEdgeRelativeJump);
+  f.klt_window_px = get(c, kKltWindowPx);
+  f.klt_max_level = get(c, kKltMaxLevel);
+  f.klt_max_iterations = get(c, kKltMaxIterations);
+  f.klt_epsilon = get(c, kKltEpsilon);
+  f.forward_backward_check = get(c, kForwardBackwardCheck);
+  f.fb_threshold_px = get(c, kFbThresholdPx);
+  f.fb_max_level = get(c, kFbMaxLevel);
+  f.klt_threads = get(c, kKltThreads);
+  f.ransac = get(c, kRansac);
+  f.ransac_threshold_px = get(c, kRansacThresholdPx);
+  f.ransac_confidence = get(c, kRansacConfidence);
+  f.border_px = get(c, kBorderPx);
+  f.imu_prediction = get(c, kImuPrediction);
+  f.depth_patch_size = get(c, kDepthPatchSize);
+  f.depth_max_relative_spread = get(c, kDepthMaxRelativeSpread);
+  f.depth_min_valid = get(c, kDepthMinValid);
+  f.keyframe_parallax_px = get(c, kKeyframeParallaxPx);
+  f.keyframe_min_tracked = get(c, kKeyframeMinTracked);
   // One set of range rules (validate); its errors are re-addressed to the key and its origin.
   const std::string probe = "frontend";
   try {
