@@ -5,26 +5,44 @@
 
 #include "first_order_lag.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/simulation/config_schema.hpp"
 
 namespace navaid::simulation {
 
 namespace {
 
-Vec3 read_vec3(const Config& c, const char* key, const Vec3& fallback) {
-  if (!c.has(key)) return fallback;
-  const std::vector<double> v = c.get_doubles(key, 3, {-2.0, 2.0});
+Vec3 read_vec3(const Config& c, const ConfigKey<std::vector<double>>& key) {
+  const std::vector<double> v = get(c, key);
   return Vec3(v[0], v[1], v[2]);
 }
 
+std::vector<double> items(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+const HandMotionConfig kDefaults;
+const ConfigKey<double> kSpeed{"user.hand.speed_mps", kDefaults.speed_mps, {0.02, 2.0},
+                               "the simulated hand's speed toward a new place [m/s]"};
+const ConfigKey<double> kMaxAcceleration{"user.hand.max_acceleration_mps2", kDefaults.max_acceleration_mps2, {0.1, 20.0},
+                                         "the simulated hand's largest acceleration [m/s^2]"};
+const ConfigKey<std::vector<double>> kRestOffset{"user.hand.rest_offset_m", items(kDefaults.rest_offset_m), 3,
+                                                 {-2.0, 2.0}, "the hand's rest place relative to the body [m]"};
+const ConfigKey<std::vector<double>> kMinOffset{"user.hand.min_offset_m", items(kDefaults.min_offset_m), 3, {-2.0, 2.0},
+                                                "lower corner of the hand's reach relative to the body [m]"};
+const ConfigKey<std::vector<double>> kMaxOffset{"user.hand.max_offset_m", items(kDefaults.max_offset_m), 3, {-2.0, 2.0},
+                                                "upper corner of the hand's reach relative to the body [m]"};
+
 }  // namespace
+
+ConfigSchema hand_motion_config_schema() {
+  return ConfigSchema().add(kSpeed).add(kMaxAcceleration).add(kRestOffset).add(kMinOffset).add(kMaxOffset);
+}
 
 HandMotionConfig read_hand_motion_config(const Config& c) {
   HandMotionConfig h;
-  h.speed_mps = c.get_double("user.hand.speed_mps", h.speed_mps, {0.02, 2.0});
-  h.max_acceleration_mps2 = c.get_double("user.hand.max_acceleration_mps2", h.max_acceleration_mps2, {0.1, 20.0});
-  h.rest_offset_m = read_vec3(c, "user.hand.rest_offset_m", h.rest_offset_m);
-  h.min_offset_m = read_vec3(c, "user.hand.min_offset_m", h.min_offset_m);
-  h.max_offset_m = read_vec3(c, "user.hand.max_offset_m", h.max_offset_m);
+  h.speed_mps = get(c, kSpeed);
+  h.max_acceleration_mps2 = get(c, kMaxAcceleration);
+  h.rest_offset_m = read_vec3(c, kRestOffset);
+  h.min_offset_m = read_vec3(c, kMinOffset);
+  h.max_offset_m = read_vec3(c, kMaxOffset);
   for (int i = 0; i < 3; ++i)
     if (!(h.min_offset_m[i] < h.max_offset_m[i]) || h.rest_offset_m[i] < h.min_offset_m[i] ||
         h.rest_offset_m[i] > h.max_offset_m[i])

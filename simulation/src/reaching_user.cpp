@@ -1,5 +1,7 @@
 #include "navaid/simulation/reaching_user.hpp"
+
 #include "navaid/core/random_draws.hpp"
+#include "navaid/simulation/config_schema.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,18 +15,48 @@ constexpr double kDeg = M_PI / 180.0;
 
 }  // namespace
 
+namespace {
+const ReachModel kDefaults;
+const ConfigKey<double> kMoveTime{"user.reach.move_time_s", kDefaults.move_time_s, {0.1, 5.0},
+                                  "a direction cue moves the hand this long [s]"};
+const ConfigKey<double> kDirectionSigma{"user.reach.direction_sigma_deg", kDefaults.direction_sigma_rad / kDeg,
+                                        {0.0, 90.0}, "error of the direction the hand moves in [deg]"};
+const ConfigKey<double> kStepSpeed{"user.reach.step_speed_mps", kDefaults.step_speed_mps, {0.05, 1.5},
+                                   "walking speed on forward with the arm out [m/s]"};
+const ConfigKey<double> kTurn{"user.reach.turn_deg", kDefaults.turn_rad / kDeg, {2.0, 90.0},
+                              "turn on a side cue when the arm cannot go on [deg]"};
+const ConfigKey<double> kSearchSpeed{"user.reach.search_speed_mps", kDefaults.search_speed_mps, {0.05, 1.5},
+                                     "walking speed to the remembered place [m/s]"};
+const ConfigKey<double> kSweepSpacing{"user.reach.sweep_spacing_m", kDefaults.sweep_spacing_m, {0.03, 1.0},
+                                      "spacing of the rings of the hand's search spiral [m]"};
+const ConfigKey<double> kDetourAngle{"user.reach.detour_deg", kDefaults.detour_rad / kDeg, {10.0, 120.0},
+                                     "turn when trailing along what the body ran into [deg]"};
+const ConfigKey<double> kDetour{"user.reach.detour_m", kDefaults.detour_m, {0.1, 3.0},
+                                "distance trailed along what the body ran into [m]"};
+}  // namespace
+
+ConfigSchema reach_model_schema() {
+  return ConfigSchema()
+      .add(kMoveTime)
+      .add(kDirectionSigma)
+      .add(kStepSpeed)
+      .add(kTurn)
+      .add(kSearchSpeed)
+      .add(kSweepSpacing)
+      .add(kDetourAngle)
+      .add(kDetour);
+}
+
 ReachModel read_reach_model(const Config& c) {
   ReachModel m;
-  const auto d = [&c](const char* key, double& v, Range r) { v = c.get_double(key, v, r); };
-  const auto deg = [&c](const char* key, double& v, Range r) { v = c.get_double(key, v / kDeg, r) * kDeg; };
-  d("user.reach.move_time_s", m.move_time_s, {0.1, 5.0});
-  deg("user.reach.direction_sigma_deg", m.direction_sigma_rad, {0.0, 90.0});
-  d("user.reach.step_speed_mps", m.step_speed_mps, {0.05, 1.5});
-  deg("user.reach.turn_deg", m.turn_rad, {2.0, 90.0});
-  d("user.reach.search_speed_mps", m.search_speed_mps, {0.05, 1.5});
-  d("user.reach.sweep_spacing_m", m.sweep_spacing_m, {0.03, 1.0});
-  deg("user.reach.detour_deg", m.detour_rad, {10.0, 120.0});
-  d("user.reach.detour_m", m.detour_m, {0.1, 3.0});
+  m.move_time_s = get(c, kMoveTime);
+  m.direction_sigma_rad = get(c, kDirectionSigma) * kDeg;
+  m.step_speed_mps = get(c, kStepSpeed);
+  m.turn_rad = get(c, kTurn) * kDeg;
+  m.search_speed_mps = get(c, kSearchSpeed);
+  m.sweep_spacing_m = get(c, kSweepSpacing);
+  m.detour_rad = get(c, kDetourAngle) * kDeg;
+  m.detour_m = get(c, kDetour);
   return m;
 }
 

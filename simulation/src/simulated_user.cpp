@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/simulation/config_schema.hpp"
 
 namespace navaid::simulation {
 
@@ -70,32 +71,112 @@ UserModel user_model_preset(std::string_view name) {
   throw UsageError(fmt::format("unknown user model '{}' (known: {})", name, fmt::join(user_model_names(), ", ")));
 }
 
+namespace {
+// Defaults come from the user model (user.model), so the keys declare none.
+const ConfigKey<double> kSpeedMps{"user.speed_mps", std::nullopt, {0.2, 2.0},
+    "walking speed [m/s]; default: the user model's"};
+const ConfigKey<double> kSpeedSigmaMps{"user.speed_sigma_mps", std::nullopt, {0.0, 0.5},
+    "spread of the walking speed between users [m/s]; default: the user model's"};
+const ConfigKey<double> kReactionDelayS{"user.reaction_delay_s", std::nullopt, {0.0, 5.0},
+    "delay from a cue to the reaction [s]; default: the user model's"};
+const ConfigKey<double> kReactionJitterS{"user.reaction_jitter_s", std::nullopt, {0.0, 2.0},
+    "spread of the reaction delay [s]; default: the user model's"};
+const ConfigKey<double> kTurnErrorSigmaDeg{"user.turn_error_sigma_deg", std::nullopt, {0.0, 45.0},
+    "error of a turn made on a cue [deg]; default: the user model's"};
+const ConfigKey<double> kCompliance{"user.compliance", std::nullopt, {0.0, 1.0},
+    "share of cues followed; default: the user model's"};
+const ConfigKey<double> kWheelGain{"user.wheel_gain", std::nullopt, {0.1, 10.0},
+    "how strongly the user follows the steering wheel; default: the user model's"};
+const ConfigKey<double> kRumbleTurnRateDegS{"user.rumble_turn_rate_deg_s", std::nullopt, {5.0, 180.0},
+    "turn rate while a rumble remote vibrates [deg/s]; default: the user model's"};
+const ConfigKey<double> kRumbleSpeedFactor{"user.rumble_speed_factor", std::nullopt, {0.0, 1.0},
+    "walking speed factor while a rumble remote vibrates; default: the user model's"};
+const ConfigKey<double> kCaneStopS{"user.cane_stop_s", std::nullopt, {0.0, 5.0},
+    "stop after the cane touches something [s]; default: the user model's"};
+const ConfigKey<double> kCaneTurnDeg{"user.cane_turn_deg", std::nullopt, {10.0, 120.0},
+    "turn away from what the cane touched [deg]; default: the user model's"};
+const ConfigKey<double> kCaneDetourM{"user.cane_detour_m", std::nullopt, {0.1, 5.0},
+    "detour walked around what the cane touched [m]; default: the user model's"};
+const ConfigKey<double> kMotionStepLengthM{"user.motion.step_length_m", std::nullopt, {0.2, 1.5},
+    "step length [m]; default: the user model's"};
+const ConfigKey<double> kMotionVeerSigmaDeg{"user.motion.veer_sigma_deg", std::nullopt, {0.0, 20.0},
+    "veer of a walk without cues [deg]; default: the user model's"};
+const ConfigKey<double> kMotionVeerTimeConstantS{"user.motion.veer_time_constant_s", std::nullopt, {0.5, 100.0},
+    "time constant of the veer [s]; default: the user model's"};
+const ConfigKey<double> kMotionMaxTurnRateDegS{"user.motion.max_turn_rate_deg_s", std::nullopt, {10.0, 360.0},
+    "largest turn rate [deg/s]; default: the user model's"};
+const ConfigKey<double> kBodyRadiusM{"user.body.radius_m", std::nullopt, {0.1, 0.5},
+    "radius of the body [m]; default: the user model's"};
+const ConfigKey<double> kBodyHeightM{"user.body.height_m", std::nullopt, {1.2, 2.2},
+    "height of the body [m]; default: the user model's"};
+const ConfigKey<bool> kCaneEnabled{"user.cane.enabled", std::nullopt, "the user sweeps a long cane; default: the user model's"};
+const ConfigKey<double> kCaneLengthM{"user.cane.length_m", std::nullopt, {0.5, 1.8},
+    "length of the cane [m]; default: the user model's"};
+const ConfigKey<double> kCaneSweepHalfAngleDeg{"user.cane.sweep_half_angle_deg", std::nullopt, {0.0, 75.0},
+    "half-angle of the cane's sweep [deg]; default: the user model's"};
+const ConfigKey<double> kCaneDetectHeightM{"user.cane.detect_height_m", std::nullopt, {0.05, 1.0},
+    "the cane finds obstacles up to this height [m]; default: the user model's"};
+const ConfigKey<std::string>& model_key() {
+  static const ConfigKey<std::string> key{"user.model", std::string("typical"), user_model_names(),
+                                          "the simulated user's preset (the user.* keys change it)"};
+  return key;
+}
+}  // namespace
+
+ConfigSchema user_model_schema() {
+  ConfigSchema s;
+  s.add(model_key());
+  s.add(kSpeedMps);
+  s.add(kSpeedSigmaMps);
+  s.add(kReactionDelayS);
+  s.add(kReactionJitterS);
+  s.add(kTurnErrorSigmaDeg);
+  s.add(kCompliance);
+  s.add(kWheelGain);
+  s.add(kRumbleTurnRateDegS);
+  s.add(kRumbleSpeedFactor);
+  s.add(kCaneStopS);
+  s.add(kCaneTurnDeg);
+  s.add(kCaneDetourM);
+  s.add(kMotionStepLengthM);
+  s.add(kMotionVeerSigmaDeg);
+  s.add(kMotionVeerTimeConstantS);
+  s.add(kMotionMaxTurnRateDegS);
+  s.add(kBodyRadiusM);
+  s.add(kBodyHeightM);
+  s.add(kCaneEnabled);
+  s.add(kCaneLengthM);
+  s.add(kCaneSweepHalfAngleDeg);
+  s.add(kCaneDetectHeightM);
+  return s;
+}
+
 UserModel read_user_model(const Config& c) {
-  UserModel m = user_model_preset(c.get_string("user.model", "typical", user_model_names()));
-  const auto d = [&c](const char* key, double& v, Range r) { v = c.get_double(key, v, r); };
-  const auto deg = [&c](const char* key, double& v, Range r) { v = c.get_double(key, v / kDeg, r) * kDeg; };
-  d("user.speed_mps", m.speed_mps, {0.2, 2.0});
-  d("user.speed_sigma_mps", m.speed_sigma_mps, {0.0, 0.5});
-  d("user.reaction_delay_s", m.reaction_delay_s, {0.0, 5.0});
-  d("user.reaction_jitter_s", m.reaction_jitter_s, {0.0, 2.0});
-  deg("user.turn_error_sigma_deg", m.turn_error_sigma_rad, {0.0, 45.0});
-  d("user.compliance", m.compliance, {0.0, 1.0});
-  d("user.wheel_gain", m.wheel_gain, {0.1, 10.0});
-  deg("user.rumble_turn_rate_deg_s", m.rumble_turn_rate_rad_s, {5.0, 180.0});
-  d("user.rumble_speed_factor", m.rumble_speed_factor, {0.0, 1.0});
-  d("user.cane_stop_s", m.cane_stop_s, {0.0, 5.0});
-  deg("user.cane_turn_deg", m.cane_turn_rad, {10.0, 120.0});
-  d("user.cane_detour_m", m.cane_detour_m, {0.1, 5.0});
-  d("user.motion.step_length_m", m.motion.step_length_m, {0.2, 1.5});
-  deg("user.motion.veer_sigma_deg", m.motion.veer_sigma, {0.0, 20.0});
-  d("user.motion.veer_time_constant_s", m.motion.veer_time_constant_s, {0.5, 100.0});
-  deg("user.motion.max_turn_rate_deg_s", m.motion.max_turn_rate_rad_s, {10.0, 360.0});
-  d("user.body.radius_m", m.body.radius_m, {0.1, 0.5});
-  d("user.body.height_m", m.body.height_m, {1.2, 2.2});
-  m.cane.enabled = c.get_bool("user.cane.enabled", m.cane.enabled);
-  d("user.cane.length_m", m.cane.length_m, {0.5, 1.8});
-  deg("user.cane.sweep_half_angle_deg", m.cane.sweep_half_angle_rad, {0.0, 75.0});
-  d("user.cane.detect_height_m", m.cane.detect_height_m, {0.05, 1.0});
+  UserModel m = user_model_preset(get(c, model_key()));
+  const auto d = [&c](const ConfigKey<double>& key, double& v) { v = get(c, defaulting_to(key, v)); };
+  const auto deg = [&c](const ConfigKey<double>& key, double& v) { v = get(c, defaulting_to(key, v / kDeg)) * kDeg; };
+  d(kSpeedMps, m.speed_mps);
+  d(kSpeedSigmaMps, m.speed_sigma_mps);
+  d(kReactionDelayS, m.reaction_delay_s);
+  d(kReactionJitterS, m.reaction_jitter_s);
+  deg(kTurnErrorSigmaDeg, m.turn_error_sigma_rad);
+  d(kCompliance, m.compliance);
+  d(kWheelGain, m.wheel_gain);
+  deg(kRumbleTurnRateDegS, m.rumble_turn_rate_rad_s);
+  d(kRumbleSpeedFactor, m.rumble_speed_factor);
+  d(kCaneStopS, m.cane_stop_s);
+  deg(kCaneTurnDeg, m.cane_turn_rad);
+  d(kCaneDetourM, m.cane_detour_m);
+  d(kMotionStepLengthM, m.motion.step_length_m);
+  deg(kMotionVeerSigmaDeg, m.motion.veer_sigma);
+  d(kMotionVeerTimeConstantS, m.motion.veer_time_constant_s);
+  deg(kMotionMaxTurnRateDegS, m.motion.max_turn_rate_rad_s);
+  d(kBodyRadiusM, m.body.radius_m);
+  d(kBodyHeightM, m.body.height_m);
+  m.cane.enabled = get(c, defaulting_to(kCaneEnabled, m.cane.enabled));
+  d(kCaneLengthM, m.cane.length_m);
+  deg(kCaneSweepHalfAngleDeg, m.cane.sweep_half_angle_rad);
+  d(kCaneDetectHeightM, m.cane.detect_height_m);
   validate(m.body);
   validate(m.cane);
   validate(m.motion);

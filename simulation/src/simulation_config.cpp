@@ -6,55 +6,241 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/simulation/config_schema.hpp"
 
 namespace navaid::simulation {
 
 namespace {
 
-Vec3 get_vec3(const Config& c, const char* key, const Vec3& fallback, Range allowed) {
-  if (!c.has(key)) return fallback;
-  const auto v = c.get_doubles(key, 3, allowed);
+std::vector<double> items(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+std::vector<double> items(const Mat3& m) {
+  return {m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2)};
+}
+
+Vec3 get_vec3(const Config& c, const ConfigKey<std::vector<double>>& key) {
+  const auto v = get(c, key);
   return Vec3(v[0], v[1], v[2]);
 }
 
 // A 3x3 matrix given row by row as 9 numbers.
-Mat3 get_mat3(const Config& c, const char* key, const Mat3& fallback) {
-  if (!c.has(key)) return fallback;
-  const auto v = c.get_doubles(key, 9, {-10, 10});
+Mat3 get_mat3(const Config& c, const ConfigKey<std::vector<double>>& key) {
+  const auto v = get(c, key);
   Mat3 m;
   m << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
   return m;
 }
 
+const SimulationConfig kDefaults;
+const RgbdNoiseConfig kRgbd;
+const LabelConfusionConfig kLabels;
+const GnssModelConfig kGps;
+const FeatureSimConfig kFeatures;
+const WalkerConfig kWalker;
+
+const ConfigKey<bool> kNoise{"sensor.noise", true, "false switches every sensor's noise off"};
+
+// Scenario and run.
+const ConfigKey<long long> kWorldSeed{"simulation.world_seed", 0, 0, std::numeric_limits<long long>::max(),
+                                      "seed of the world (layout jitter, people); 0: the scenario's documented seed"};
+const ConfigKey<bool> kPeople{"simulation.people", ScenarioOptions{}.people, "moving people"};
+const ConfigKey<bool> kVehicles{"simulation.vehicles", ScenarioOptions{}.vehicles, "moving vehicles"};
+const ConfigKey<bool> kTargets{"simulation.targets", ScenarioOptions{}.targets,
+                               "target objects for hand guidance (the lab walks' tagged box)"};
+const ConfigKey<std::string> kLayout{"simulation.layout", std::string("default"), {"default", "random"},
+                                     "random: the obstacle layout drawn from the world seed (corridor, "
+                                     "obstacle-course)"};
+const ConfigKey<double> kMountPitch{"mount_pitch_deg", std::nullopt, {-60.0, 60.0},
+                                    "the camera's downward pitch on its mount [deg]; default: the mount's"};
+const ConfigKey<long long> kSeed{"seed", 0, 0, std::numeric_limits<long long>::max(),
+                                 "noise seed (the rendering does not depend on it)"};
+const ConfigKey<double> kDuration{"duration", 0.0, {0, 1e6}, "simulated time [s]; 0: the whole walk"};
+const ConfigKey<double> kStillTime{"simulation.still_time", kDefaults.still_time_s, {0, 60},
+                                   "standing still before walking off [s]"};
+const ConfigKey<int> kLaps{"simulation.laps", kDefaults.laps, 1, 10000, "times round a closed path"};
+const ConfigKey<std::string> kMode{"simulation.mode", std::string("images"), {"images", "features"},
+                                   "render RGB-D images or simulate feature tracks"};
+
+// Walker.
+const ConfigKey<double> kWalkerSpeed{"walker.speed", kWalker.speed_mps, {0.2, 3}, "cruise walking speed [m/s]"};
+const ConfigKey<double> kStepFrequency{"walker.step_frequency", kWalker.step_frequency_hz, {0.5, 4},
+                                       "steps per second (vertical bob frequency) [Hz]"};
+const ConfigKey<double> kBob{"walker.bob_amplitude", kWalker.bob_amplitude_m, {0, 0.2}, "vertical bob amplitude [m]"};
+const ConfigKey<double> kSway{"walker.sway_amplitude", kWalker.sway_amplitude_m, {0, 0.2},
+                              "lateral sway amplitude [m]"};
+const ConfigKey<double> kScanAmplitude{"walker.scan_amplitude", std::nullopt, {0, 1.5},
+                                       "yaw scanning amplitude [rad]; default: the mount's"};
+const ConfigKey<double> kScanPeriod{"walker.scan_period", std::nullopt, {0.2, 60},
+                                    "yaw scanning period [s]; default: the mount's"};
+
+// Camera and depth.
+const ConfigKey<std::vector<double>> kResolution{"sensor.camera.resolution", std::nullopt, 2, {16, 4096},
+                                                 "[width, height] of the camera (same aspect ratio); default: the "
+                                                 "sensor preset's"};
+const ConfigKey<double> kCameraRate{"sensor.camera.rate", std::nullopt, {1, 120},
+                                    "camera frame rate [Hz]; default: the sensor preset's"};
+const ConfigKey<double> kDepthMin{"sensor.depth.min", std::nullopt, {0.05, 20},
+                                  "nearest measured depth [m]; default: the sensor preset's"};
+const ConfigKey<double> kDepthMax{"sensor.depth.max", std::nullopt, {0.05, 60},
+                                  "farthest measured depth [m] (>= sensor.depth.min); default: the sensor preset's"};
+const ConfigKey<double> kDepthBaseline{"sensor.depth.baseline", std::nullopt, {1e-3, 1},
+                                       "stereo baseline of the depth noise [m]; default: the sensor preset's"};
+const ConfigKey<double> kDisparitySigma{"sensor.depth.disparity_sigma", std::nullopt, {0, 5},
+                                        "disparity noise sigma [px]; default: the sensor preset's"};
+const ConfigKey<double> kTimeOffset{"sensor.camera.time_offset", 0.0, {-0.1, 0.1},
+                                    "true camera-IMU time offset [s] (t_imu = t_cam + offset)"};
+const ConfigKey<double> kTimeOffsetCalibrated{"sensor.camera.time_offset_calibrated", std::nullopt, {-0.1, 0.1},
+                                              "the offset calibration.yaml states [s]; default: the true one"};
+const ConfigKey<bool> kDepthNoise{"sensor.depth.noise", kRgbd.depth_noise, "disparity noise and quantization"};
+const ConfigKey<double> kDisparityQuantization{"sensor.depth.disparity_quantization", kRgbd.disparity_quantization_px,
+                                               {0, 1}, "disparity quantization step [px], e.g. 0.125; 0 = continuous"};
+const ConfigKey<double> kEdgeRelativeJump{"sensor.depth.edge_relative_jump", kRgbd.edge_relative_jump, {1e-3, 10},
+                                          "3x3 relative depth jump that marks an edge"};
+const ConfigKey<double> kEdgeDropout{"sensor.depth.edge_dropout", kRgbd.edge_dropout_probability, {0, 1},
+                                     "probability that an edge pixel is invalid"};
+const ConfigKey<double> kFlyingPixels{"sensor.depth.flying_pixels", kRgbd.flying_pixel_probability, {0, 1},
+                                      "probability that a surviving edge pixel mixes foreground and background"};
+const ConfigKey<double> kDepthDropout{"sensor.depth.dropout", kRgbd.dropout_probability, {0, 1},
+                                      "probability that any valid depth pixel is invalid"};
+const ConfigKey<bool> kIntensityNoise{"sensor.intensity.noise", kRgbd.intensity_noise, "image read and shot noise"};
+const ConfigKey<double> kIntensitySigma{"sensor.intensity.sigma", kRgbd.intensity_sigma, {0, 50},
+                                        "image read noise sigma [grey levels]"};
+const ConfigKey<double> kIntensityShotGain{"sensor.intensity.shot_gain", kRgbd.intensity_shot_gain, {0, 10},
+                                           "image shot-noise gain g (variance g I) [grey levels]"};
+
+// Semantic labels.
+const ConfigKey<bool> kLabelsNoise{"sensor.labels.noise", kLabels.noise,
+                                   "segmentation errors (false: predicted labels are the truth)"};
+const ConfigMapKey kLabelsAccuracy{"sensor.labels.accuracy", "accuracy in [0.001, 1] per semantic class name",
+                                   "a class's segmentation accuracy (classes not given keep their default)"};
+const ConfigKey<int> kCellSize{"sensor.labels.cell_size", kLabels.cell_size_px, 1, 4096,
+                               "side of the segmentation error cells [px]"};
+const ConfigKey<int> kBoundaryWidth{"sensor.labels.boundary_width", kLabels.boundary_width_px, 0, 16,
+                                    "boundary erosion width [px]; 0: off"};
+const ConfigKey<double> kBoundaryProbability{"sensor.labels.boundary_probability", kLabels.boundary_probability, {0, 1},
+                                             "probability of a boundary pixel's erosion; 0: off"};
+const ConfigKey<double> kConfidenceConcentration{"sensor.labels.confidence_concentration",
+                                                 kLabels.confidence_concentration, {1e-3, 1e4},
+                                                 "kappa of the label confidence; smaller: more spread"};
+
+// IMU.
+const ConfigKey<double> kImuRate{"sensor.imu.rate", std::nullopt, {50, 2000}, "IMU rate [Hz]; default: the sensor "
+                                                                               "preset's"};
+const ConfigKey<double> kGyroNoise{"sensor.imu.gyro_noise_density", std::nullopt, {0, 1},
+                                   "gyro white noise density [rad/s/sqrt(Hz)]; default: the sensor preset's"};
+const ConfigKey<double> kGyroWalk{"sensor.imu.gyro_random_walk", std::nullopt, {0, 1},
+                                  "gyro bias random walk [rad/s^2/sqrt(Hz)]; default: the sensor preset's"};
+const ConfigKey<double> kAccelNoise{"sensor.imu.accel_noise_density", std::nullopt, {0, 10},
+                                    "accelerometer white noise density [m/s^2/sqrt(Hz)]; default: the sensor preset's"};
+const ConfigKey<double> kAccelWalk{"sensor.imu.accel_random_walk", std::nullopt, {0, 10},
+                                   "accelerometer bias random walk [m/s^3/sqrt(Hz)]; default: the sensor preset's"};
+const ConfigKey<bool> kImuNoise{"sensor.imu.noise", true, "IMU white noise and bias walk"};
+const ConfigKey<std::vector<double>> kInitialGyroBias{"sensor.imu.initial_gyro_bias", items(Vec3::Zero().eval()), 3,
+                                                      {-1, 1}, "gyro bias at the start [rad/s]"};
+const ConfigKey<std::vector<double>> kInitialAccelBias{"sensor.imu.initial_accel_bias", items(Vec3::Zero().eval()), 3,
+                                                       {-5, 5}, "accelerometer bias at the start [m/s^2]"};
+const ConfigKey<std::vector<double>> kGyroMisalignment{"sensor.imu.gyro_scale_misalignment",
+                                                       items(Mat3::Identity().eval()), 9, {-10, 10},
+                                                       "gyro scale and misalignment matrix, row by row"};
+const ConfigKey<std::vector<double>> kAccelMisalignment{"sensor.imu.accel_scale_misalignment",
+                                                        items(Mat3::Identity().eval()), 9, {-10, 10},
+                                                        "accelerometer scale and misalignment matrix, row by row"};
+const ConfigKey<std::vector<double>> kShocks{"sensor.imu.shocks", std::nullopt, 0, {-1e6, 1e6},
+                                             "IMU shocks as groups [start_s, duration_s, ax, ay, az, ...] (seconds "
+                                             "since the walk starts, m/s^2); absent: none"};
+
+// GNSS.
+const ConfigKey<bool> kGpsEnabled{"sensor.gps.enabled", std::nullopt,
+                                  "simulate GNSS fixes; default: on outdoors (route1, route2, school)"};
+const ConfigKey<double> kGpsRate{"sensor.gps.rate", kGps.rate_hz, {1, 10}, "GNSS fix rate [Hz]"};
+const ConfigKey<double> kGpsSigmaHorizontal{"sensor.gps.sigma_horizontal", kGps.sigma_horizontal_m, {0, 100},
+                                            "white-noise sigma per horizontal axis [m]"};
+const ConfigKey<double> kGpsSigmaVertical{"sensor.gps.sigma_vertical", kGps.sigma_vertical_m, {0, 100},
+                                          "white-noise sigma on up [m]"};
+const ConfigKey<bool> kGpsMultipath{"sensor.gps.multipath", true, "Gauss-Markov multipath errors"};
+const ConfigKey<double> kGpsMultipathTau{"sensor.gps.multipath_tau", kGps.multipath_tau_s, {0.1, 3600},
+                                         "multipath correlation time [s]"};
+const ConfigKey<double> kGpsMultipathHorizontal{"sensor.gps.multipath_sigma_horizontal", kGps.multipath_sigma_horizontal_m,
+                                                {0, 100}, "open-sky multipath sigma per horizontal axis [m]"};
+const ConfigKey<double> kGpsMultipathVertical{"sensor.gps.multipath_sigma_vertical", kGps.multipath_sigma_vertical_m,
+                                              {0, 100}, "open-sky multipath sigma on up [m]"};
+const ConfigKey<double> kGpsCanyonGain{"sensor.gps.canyon_gain", kGps.canyon_gain, {0, 100},
+                                       "k in sigma_mp (1 + k f) of the urban canyon factor f"};
+const ConfigKey<bool> kGpsNoise{"sensor.gps.noise", true, "GNSS noise (false: fixes at the truth)"};
+const ConfigKey<std::vector<double>> kGpsOutages{"sensor.gps.outages", std::nullopt, 0, {-60, 1e6},
+                                                 "GNSS outages as pairs [start, end, ...] in seconds since the walk "
+                                                 "starts; absent: none"};
+const ConfigKey<double> kGpsOutageCanyon{"sensor.gps.outage_canyon_factor", std::nullopt, {0, 1},
+                                         "no fix while the canyon factor is at least this; absent: never"};
+
+// Magnetometer.
+const ConfigKey<bool> kMagEnabled{"sensor.mag.enabled", true, "simulate the magnetometer"};
+const ConfigKey<double> kMagRate{"sensor.mag.rate", kDefaults.mag_rate_hz, {1, 1000}, "magnetometer rate [Hz]"};
+const ConfigKey<double> kMagSigma{"sensor.mag.sigma", kDefaults.mag.sigma_t, {0, 1e-4},
+                                  "magnetometer white noise per axis [T]"};
+const ConfigKey<std::vector<double>> kMagHardIron{"sensor.mag.hard_iron", items(kDefaults.mag.hard_iron_t), 3,
+                                                  {-1e-3, 1e-3}, "magnetometer hard-iron offset [T]"};
+const ConfigKey<std::vector<double>> kMagSoftIron{"sensor.mag.soft_iron", items(kDefaults.mag.soft_iron), 9, {-10, 10},
+                                                  "magnetometer soft-iron matrix, row by row"};
+const ConfigKey<bool> kMagNoise{"sensor.mag.noise", true, "magnetometer noise"};
+
+// Feature-level mode.
+const ConfigKey<double> kLandmarkSpacing{"features.landmark_spacing", kFeatures.landmark_spacing_m, {0.05, 100},
+                                         "landmark seeding points along the path [m]"};
+const ConfigKey<int> kRaysPerSeed{"features.rays_per_seed_point", kFeatures.rays_per_seed_point, 1, 10000,
+                                  "rays cast from each seeding point"};
+const ConfigKey<double> kMaxObservationRange{"features.max_observation_range", kFeatures.max_observation_range_m,
+                                             {0.5, 200}, "landmarks farther from the camera are not observed [m]"};
+const ConfigKey<double> kFeaturePixelSigma{"features.pixel_sigma", kFeatures.pixel_sigma_px, {0, 20},
+                                           "white pixel noise per axis of feature observations [px]"};
+const ConfigKey<int> kMaxPerFrame{"features.max_per_frame", kFeatures.max_features_per_frame, 1, 5000,
+                                  "feature observations per frame at most"};
+
+// Keys whose allowed names come from other files: built on first use.
+const ConfigKey<std::string>& scenario_key() {
+  static const ConfigKey<std::string> key{"scenario", std::nullopt, scenario_names(),
+                                          "the scenario to simulate (docs/scenarios.md)"};
+  return key;
+}
+const ConfigKey<std::string>& mount_key() {
+  static const ConfigKey<std::string> key{"mount", std::nullopt, mount_names(),
+                                          "where the sensor rig is worn; default: the scenario's"};
+  return key;
+}
+const ConfigKey<std::string>& sensor_preset_key() {
+  static const ConfigKey<std::string> key{"sensor.preset", std::nullopt, sensor_preset_names(),
+                                          "the RGB-D + IMU sensor; default: the mount's"};
+  return key;
+}
+
 void read_camera(const Config& c, SimulationConfig& s, const SensorPreset& preset) {
   CameraCalibration cam = preset.camera;
-  if (c.has("sensor.camera.resolution")) {
-    const auto res = c.get_doubles("sensor.camera.resolution", 2, {16, 4096});
+  if (c.has(kResolution.name)) {
+    const auto res = get(c, kResolution);
     cam = rescale_camera(cam, static_cast<int>(res[0]), static_cast<int>(res[1]));
   }
-  cam.rate_hz = c.get_double("sensor.camera.rate", cam.rate_hz, {1, 120});
-  cam.depth_min_m = c.get_double("sensor.depth.min", cam.depth_min_m, {0.05, 20});
-  cam.depth_max_m = c.get_double("sensor.depth.max", cam.depth_max_m, {cam.depth_min_m, 60});
-  cam.depth_baseline_m = c.get_double("sensor.depth.baseline", cam.depth_baseline_m, {1e-3, 1});
-  cam.depth_disparity_sigma_px = c.get_double("sensor.depth.disparity_sigma", cam.depth_disparity_sigma_px, {0, 5});
+  cam.rate_hz = get(c, defaulting_to(kCameraRate, cam.rate_hz));
+  cam.depth_min_m = get(c, defaulting_to(kDepthMin, cam.depth_min_m));
+  cam.depth_max_m = get(c, within(defaulting_to(kDepthMax, cam.depth_max_m), {cam.depth_min_m, 60}));
+  cam.depth_baseline_m = get(c, defaulting_to(kDepthBaseline, cam.depth_baseline_m));
+  cam.depth_disparity_sigma_px = get(c, defaulting_to(kDisparitySigma, cam.depth_disparity_sigma_px));
   cam.T_B_C = s.mount.T_B_C();
   // A real rig's clocks disagree by milliseconds; 0.1 s bounds what an estimator can still find.
-  s.camera_time_offset_s = c.get_double("sensor.camera.time_offset", 0.0, {-0.1, 0.1});
-  cam.time_offset_s = c.get_double("sensor.camera.time_offset_calibrated", s.camera_time_offset_s, {-0.1, 0.1});
+  s.camera_time_offset_s = get(c, kTimeOffset);
+  cam.time_offset_s = get(c, defaulting_to(kTimeOffsetCalibrated, s.camera_time_offset_s));
   s.camera = cam;
 
   RgbdNoiseConfig& n = s.rgbd_noise;
   n = rgbd_noise_config(cam);
-  n.noise = c.get_bool("sensor.noise", true);
-  n.depth_noise = c.get_bool("sensor.depth.noise", n.depth_noise);
-  n.disparity_quantization_px = c.get_double("sensor.depth.disparity_quantization", n.disparity_quantization_px, {0, 1});
-  n.edge_relative_jump = c.get_double("sensor.depth.edge_relative_jump", n.edge_relative_jump, {1e-3, 10});
-  n.edge_dropout_probability = c.get_double("sensor.depth.edge_dropout", n.edge_dropout_probability, {0, 1});
-  n.flying_pixel_probability = c.get_double("sensor.depth.flying_pixels", n.flying_pixel_probability, {0, 1});
-  n.dropout_probability = c.get_double("sensor.depth.dropout", n.dropout_probability, {0, 1});
-  n.intensity_noise = c.get_bool("sensor.intensity.noise", n.intensity_noise);
-  n.intensity_sigma = c.get_double("sensor.intensity.sigma", n.intensity_sigma, {0, 50});
-  n.intensity_shot_gain = c.get_double("sensor.intensity.shot_gain", n.intensity_shot_gain, {0, 10});
+  n.noise = get(c, kNoise);
+  n.depth_noise = get(c, kDepthNoise);
+  n.disparity_quantization_px = get(c, kDisparityQuantization);
+  n.edge_relative_jump = get(c, kEdgeRelativeJump);
+  n.edge_dropout_probability = get(c, kEdgeDropout);
+  n.flying_pixel_probability = get(c, kFlyingPixels);
+  n.dropout_probability = get(c, kDepthDropout);
+  n.intensity_noise = get(c, kIntensityNoise);
+  n.intensity_sigma = get(c, kIntensitySigma);
+  n.intensity_shot_gain = get(c, kIntensityShotGain);
   validate(n, "sensor.depth");
 
   // Rendered a little beyond the sensor's range so that noise can carry a depth across the limit.
@@ -64,36 +250,35 @@ void read_camera(const Config& c, SimulationConfig& s, const SensorPreset& prese
 
 void read_labels(const Config& c, SimulationConfig& s) {
   LabelConfusionConfig& l = s.label_confusion;
-  l.noise = c.get_bool("sensor.noise", true) && c.get_bool("sensor.labels.noise", l.noise);
-  for (const auto& name : c.child_keys("sensor.labels.accuracy")) {
+  l.noise = get(c, kNoise) && get(c, kLabelsNoise);
+  for (const auto& name : c.child_keys(kLabelsAccuracy.name)) {
     const SemanticClass cls = semantic_class_from_name(name);
-    l.accuracy[static_cast<std::size_t>(cls)] = c.get_double("sensor.labels.accuracy." + name, {1e-3, 1});
+    l.accuracy[static_cast<std::size_t>(cls)] = c.get_double(kLabelsAccuracy.name + "." + name, {1e-3, 1});
   }
-  l.cell_size_px = static_cast<int>(c.get_int("sensor.labels.cell_size", l.cell_size_px, 1, 4096));
-  l.boundary_width_px = static_cast<int>(c.get_int("sensor.labels.boundary_width", l.boundary_width_px, 0, 16));
-  l.boundary_probability = c.get_double("sensor.labels.boundary_probability", l.boundary_probability, {0, 1});
-  l.confidence_concentration =
-      c.get_double("sensor.labels.confidence_concentration", l.confidence_concentration, {1e-3, 1e4});
+  l.cell_size_px = get(c, kCellSize);
+  l.boundary_width_px = get(c, kBoundaryWidth);
+  l.boundary_probability = get(c, kBoundaryProbability);
+  l.confidence_concentration = get(c, kConfidenceConcentration);
   validate(l, "sensor.labels");
 }
 
 void read_imu(const Config& c, SimulationConfig& s, const SensorPreset& preset) {
   ImuCalibration imu = preset.imu;
-  imu.rate_hz = c.get_double("sensor.imu.rate", imu.rate_hz, {50, 2000});
-  imu.gyro_noise_density = c.get_double("sensor.imu.gyro_noise_density", imu.gyro_noise_density, {0, 1});
-  imu.gyro_random_walk = c.get_double("sensor.imu.gyro_random_walk", imu.gyro_random_walk, {0, 1});
-  imu.accel_noise_density = c.get_double("sensor.imu.accel_noise_density", imu.accel_noise_density, {0, 10});
-  imu.accel_random_walk = c.get_double("sensor.imu.accel_random_walk", imu.accel_random_walk, {0, 10});
+  imu.rate_hz = get(c, defaulting_to(kImuRate, imu.rate_hz));
+  imu.gyro_noise_density = get(c, defaulting_to(kGyroNoise, imu.gyro_noise_density));
+  imu.gyro_random_walk = get(c, defaulting_to(kGyroWalk, imu.gyro_random_walk));
+  imu.accel_noise_density = get(c, defaulting_to(kAccelNoise, imu.accel_noise_density));
+  imu.accel_random_walk = get(c, defaulting_to(kAccelWalk, imu.accel_random_walk));
   s.imu = imu;
-  const bool noise = c.get_bool("sensor.noise", true) && c.get_bool("sensor.imu.noise", true);
+  const bool noise = get(c, kNoise) && get(c, kImuNoise);
   s.imu_options.white_noise = noise;
   s.imu_options.bias_walk = noise;
-  s.imu_options.initial_gyro_bias = get_vec3(c, "sensor.imu.initial_gyro_bias", Vec3::Zero(), {-1, 1});
-  s.imu_options.initial_accel_bias = get_vec3(c, "sensor.imu.initial_accel_bias", Vec3::Zero(), {-5, 5});
-  s.imu_options.gyro_scale_misalignment = get_mat3(c, "sensor.imu.gyro_scale_misalignment", Mat3::Identity());
-  s.imu_options.accel_scale_misalignment = get_mat3(c, "sensor.imu.accel_scale_misalignment", Mat3::Identity());
-  if (c.has("sensor.imu.shocks")) {  // [start, duration, ax, ay, az, ...]: seconds since the walk starts, m/s^2
-    const auto v = c.get_doubles("sensor.imu.shocks", 0, {-1e6, 1e6});
+  s.imu_options.initial_gyro_bias = get_vec3(c, kInitialGyroBias);
+  s.imu_options.initial_accel_bias = get_vec3(c, kInitialAccelBias);
+  s.imu_options.gyro_scale_misalignment = get_mat3(c, kGyroMisalignment);
+  s.imu_options.accel_scale_misalignment = get_mat3(c, kAccelMisalignment);
+  if (c.has(kShocks.name)) {  // [start, duration, ax, ay, az, ...]: seconds since the walk starts, m/s^2
+    const auto v = get(c, kShocks);
     if (v.size() % 5 != 0)
       throw ConfigError(c.origin("sensor.imu.shocks"), "sensor.imu.shocks",
                         "needs groups [start_s, duration_s, ax, ay, az, ...]");
@@ -109,51 +294,48 @@ void read_imu(const Config& c, SimulationConfig& s, const SensorPreset& preset) 
 void read_gps(const Config& c, SimulationConfig& s, const Scenario& scenario) {
   // GNSS is on by default outdoors only: indoors a receiver has no fix worth simulating.
   const bool outdoor = scenario.name == "route1" || scenario.name == "route2" || scenario.name == "school";
-  s.gps_enabled = c.get_bool("sensor.gps.enabled", outdoor);
+  s.gps_enabled = get(c, defaulting_to(kGpsEnabled, outdoor));
   GnssModelConfig& g = s.gps;
-  g.rate_hz = c.get_double("sensor.gps.rate", g.rate_hz, {1, 10});
-  g.sigma_horizontal_m = c.get_double("sensor.gps.sigma_horizontal", g.sigma_horizontal_m, {0, 100});
-  g.sigma_vertical_m = c.get_double("sensor.gps.sigma_vertical", g.sigma_vertical_m, {0, 100});
-  const bool multipath = c.get_bool("sensor.gps.multipath", true);
-  g.multipath_tau_s = c.get_double("sensor.gps.multipath_tau", g.multipath_tau_s, {0.1, 3600});
-  g.multipath_sigma_horizontal_m =
-      multipath ? c.get_double("sensor.gps.multipath_sigma_horizontal", g.multipath_sigma_horizontal_m, {0, 100}) : 0.0;
-  g.multipath_sigma_vertical_m =
-      multipath ? c.get_double("sensor.gps.multipath_sigma_vertical", g.multipath_sigma_vertical_m, {0, 100}) : 0.0;
-  g.canyon_gain = c.get_double("sensor.gps.canyon_gain", g.canyon_gain, {0, 100});
-  g.noise = c.get_bool("sensor.noise", true) && c.get_bool("sensor.gps.noise", true);
-  if (c.has("sensor.gps.outages")) {  // [start, end, start, end, ...] seconds since the walk starts
-    const auto v = c.get_doubles("sensor.gps.outages", 0, {-60, 1e6});
+  g.rate_hz = get(c, kGpsRate);
+  g.sigma_horizontal_m = get(c, kGpsSigmaHorizontal);
+  g.sigma_vertical_m = get(c, kGpsSigmaVertical);
+  const bool multipath = get(c, kGpsMultipath);
+  g.multipath_tau_s = get(c, kGpsMultipathTau);
+  g.multipath_sigma_horizontal_m = multipath ? get(c, kGpsMultipathHorizontal) : 0.0;
+  g.multipath_sigma_vertical_m = multipath ? get(c, kGpsMultipathVertical) : 0.0;
+  g.canyon_gain = get(c, kGpsCanyonGain);
+  g.noise = get(c, kNoise) && get(c, kGpsNoise);
+  if (c.has(kGpsOutages.name)) {  // [start, end, start, end, ...] seconds since the walk starts
+    const auto v = get(c, kGpsOutages);
     if (v.size() % 2 != 0)
       throw ConfigError(c.origin("sensor.gps.outages"), "sensor.gps.outages", "needs pairs [start, end, ...] in seconds");
     for (std::size_t i = 0; i < v.size(); i += 2)
       g.outages.push_back({kSimulationEpoch + seconds_to_ns(v[i]), kSimulationEpoch + seconds_to_ns(v[i + 1])});
   }
-  if (c.has("sensor.gps.outage_canyon_factor"))
-    g.outage_canyon_factor = c.get_double("sensor.gps.outage_canyon_factor", {0, 1});
+  if (c.has(kGpsOutageCanyon.name)) g.outage_canyon_factor = get(c, kGpsOutageCanyon);
   validate(g, "sensor.gps");
 }
 
 void read_mag(const Config& c, SimulationConfig& s) {
-  s.mag_enabled = c.get_bool("sensor.mag.enabled", true);
-  s.mag_rate_hz = c.get_double("sensor.mag.rate", s.mag_rate_hz, {1, 1000});
-  s.mag.sigma_t = c.get_double("sensor.mag.sigma", s.mag.sigma_t, {0, 1e-4});
-  s.mag.hard_iron_t = get_vec3(c, "sensor.mag.hard_iron", s.mag.hard_iron_t, {-1e-3, 1e-3});
-  s.mag.soft_iron = get_mat3(c, "sensor.mag.soft_iron", s.mag.soft_iron);
-  s.mag.noise = c.get_bool("sensor.noise", true) && c.get_bool("sensor.mag.noise", true);
+  s.mag_enabled = get(c, kMagEnabled);
+  s.mag_rate_hz = get(c, kMagRate);
+  s.mag.sigma_t = get(c, kMagSigma);
+  s.mag.hard_iron_t = get_vec3(c, kMagHardIron);
+  s.mag.soft_iron = get_mat3(c, kMagSoftIron);
+  s.mag.noise = get(c, kNoise) && get(c, kMagNoise);
   validate(s.mag, "sensor.mag");
 }
 
 void read_features(const Config& c, SimulationConfig& s) {
   FeatureSimConfig& f = s.features;
-  f.landmark_spacing_m = c.get_double("features.landmark_spacing", f.landmark_spacing_m, {0.05, 100});
-  f.rays_per_seed_point = static_cast<int>(c.get_int("features.rays_per_seed_point", f.rays_per_seed_point, 1, 10000));
-  f.max_observation_range_m = c.get_double("features.max_observation_range", f.max_observation_range_m, {0.5, 200});
-  f.pixel_sigma_px = c.get_double("features.pixel_sigma", f.pixel_sigma_px, {0, 20});
-  if (!c.get_bool("sensor.noise", true)) f.pixel_sigma_px = 0.0;
+  f.landmark_spacing_m = get(c, kLandmarkSpacing);
+  f.rays_per_seed_point = get(c, kRaysPerSeed);
+  f.max_observation_range_m = get(c, kMaxObservationRange);
+  f.pixel_sigma_px = get(c, kFeaturePixelSigma);
+  if (!get(c, kNoise)) f.pixel_sigma_px = 0.0;
   // Same switches as the image mode's depth noise; the calibration keeps the sensor's sigma.
   if (!s.rgbd_noise.noise || !s.rgbd_noise.depth_noise) f.disparity_sigma_px = 0.0;
-  f.max_features_per_frame = static_cast<int>(c.get_int("features.max_per_frame", f.max_features_per_frame, 1, 5000));
+  f.max_features_per_frame = get(c, kMaxPerFrame);
   validate(f);
 }
 
@@ -174,15 +356,54 @@ CameraCalibration rescale_camera(const CameraCalibration& camera, int width, int
   return c;
 }
 
-std::string read_scenario_name(const Config& c) { return c.get_string("scenario", scenario_names()); }
+const ConfigKey<long long>& world_seed_key() { return kWorldSeed; }
+
+ConfigSchema scenario_options_schema() {
+  return ConfigSchema().add(kWorldSeed).add(kPeople).add(kVehicles).add(kTargets).add(kLayout);
+}
+
+ConfigSchema simulation_config_schema() {
+  ConfigSchema s;
+  s.add(scenario_key());
+  s.add(scenario_options_schema());
+  s.add(mount_key()).add(kMountPitch).add(sensor_preset_key()).add(kSeed).add(kDuration).add(kStillTime).add(kLaps);
+  s.add(kMode);
+  for (const auto* k : {&kWalkerSpeed, &kStepFrequency, &kBob, &kSway, &kScanAmplitude, &kScanPeriod}) s.add(*k);
+  s.add(kResolution);
+  for (const auto* k : {&kCameraRate, &kDepthMin, &kDepthMax, &kDepthBaseline, &kDisparitySigma, &kTimeOffset,
+                        &kTimeOffsetCalibrated})
+    s.add(*k);
+  s.add(kNoise).add(kDepthNoise);
+  for (const auto* k : {&kDisparityQuantization, &kEdgeRelativeJump, &kEdgeDropout, &kFlyingPixels, &kDepthDropout})
+    s.add(*k);
+  s.add(kIntensityNoise).add(kIntensitySigma).add(kIntensityShotGain);
+  s.add(kLabelsNoise).add(kLabelsAccuracy).add(kCellSize).add(kBoundaryWidth).add(kBoundaryProbability);
+  s.add(kConfidenceConcentration);
+  for (const auto* k : {&kImuRate, &kGyroNoise, &kGyroWalk, &kAccelNoise, &kAccelWalk}) s.add(*k);
+  s.add(kImuNoise);
+  for (const auto* k : {&kInitialGyroBias, &kInitialAccelBias, &kGyroMisalignment, &kAccelMisalignment, &kShocks})
+    s.add(*k);
+  s.add(kGpsEnabled).add(kGpsRate).add(kGpsSigmaHorizontal).add(kGpsSigmaVertical).add(kGpsMultipath);
+  s.add(kGpsMultipathTau).add(kGpsMultipathHorizontal).add(kGpsMultipathVertical).add(kGpsCanyonGain).add(kGpsNoise);
+  s.add(kGpsOutages).add(kGpsOutageCanyon);
+  s.add(kMagEnabled).add(kMagRate).add(kMagSigma).add(kMagHardIron).add(kMagSoftIron).add(kMagNoise);
+  s.add(kLandmarkSpacing).add(kRaysPerSeed).add(kMaxObservationRange).add(kFeaturePixelSigma).add(kMaxPerFrame);
+  return s;
+}
+
+ConfigSchema config_schema() {
+  return simulation_config_schema().add(user_model_schema()).add(hand_motion_config_schema()).add(reach_model_schema());
+}
+
+std::string read_scenario_name(const Config& c) { return get(c, scenario_key()); }
 
 ScenarioOptions read_scenario_options(const Config& c) {
   ScenarioOptions o;
-  o.seed = static_cast<std::uint64_t>(c.get_int("simulation.world_seed", 0, 0, std::numeric_limits<long long>::max()));
-  o.people = c.get_bool("simulation.people", o.people);
-  o.vehicles = c.get_bool("simulation.vehicles", o.vehicles);
-  o.targets = c.get_bool("simulation.targets", o.targets);
-  o.random_layout = c.get_string("simulation.layout", "default", {"default", "random"}) == "random";
+  o.seed = static_cast<std::uint64_t>(get(c, kWorldSeed));
+  o.people = get(c, kPeople);
+  o.vehicles = get(c, kVehicles);
+  o.targets = get(c, kTargets);
+  o.random_layout = get(c, kLayout) == "random";
   return o;
 }
 
@@ -190,26 +411,25 @@ SimulationConfig read_simulation_config(const Config& c, const Scenario& scenari
   SimulationConfig s;
   s.scenario = scenario.name;
   s.scenario_options = read_scenario_options(c);
-  s.mount = mount_preset(c.get_string("mount", scenario.default_mount, mount_names()));
+  s.mount = mount_preset(get(c, defaulting_to(mount_key(), scenario.default_mount)));
   // The camera's downward pitch on its mount, when not the mount's own (a hand pointing level).
-  s.mount.camera_pitch_rad = c.get_double("mount_pitch_deg", s.mount.camera_pitch_rad * 180.0 / M_PI, {-60.0, 60.0}) * M_PI / 180.0;
-  s.sensor_preset = c.get_string("sensor.preset", s.mount.default_sensor, sensor_preset_names());
+  s.mount.camera_pitch_rad = get(c, defaulting_to(kMountPitch, s.mount.camera_pitch_rad * 180.0 / M_PI)) * M_PI / 180.0;
+  s.sensor_preset = get(c, defaulting_to(sensor_preset_key(), s.mount.default_sensor));
   const SensorPreset preset = sensor_preset(s.sensor_preset);
-  s.seed = static_cast<std::uint64_t>(c.get_int("seed", 0, 0, std::numeric_limits<long long>::max()));
-  s.duration_s = c.get_double("duration", 0.0, {0, 1e6});
-  s.still_time_s = c.get_double("simulation.still_time", s.still_time_s, {0, 60});
-  s.laps = static_cast<int>(c.get_int("simulation.laps", s.laps, 1, 10000));
-  s.mode = c.get_string("simulation.mode", "images", {"images", "features"}) == "images" ? SimulationMode::kImages
-                                                                                          : SimulationMode::kFeatures;
+  s.seed = static_cast<std::uint64_t>(get(c, kSeed));
+  s.duration_s = get(c, kDuration);
+  s.still_time_s = get(c, kStillTime);
+  s.laps = get(c, kLaps);
+  s.mode = get(c, kMode) == "images" ? SimulationMode::kImages : SimulationMode::kFeatures;
 
   WalkerConfig& w = s.walker;
   w = s.mount.apply(w);
-  w.speed_mps = c.get_double("walker.speed", w.speed_mps, {0.2, 3});
-  w.step_frequency_hz = c.get_double("walker.step_frequency", w.step_frequency_hz, {0.5, 4});
-  w.bob_amplitude_m = c.get_double("walker.bob_amplitude", w.bob_amplitude_m, {0, 0.2});
-  w.sway_amplitude_m = c.get_double("walker.sway_amplitude", w.sway_amplitude_m, {0, 0.2});
-  w.scan_amplitude_rad = c.get_double("walker.scan_amplitude", w.scan_amplitude_rad, {0, 1.5});
-  w.scan_period_s = c.get_double("walker.scan_period", w.scan_period_s, {0.2, 60});
+  w.speed_mps = get(c, kWalkerSpeed);
+  w.step_frequency_hz = get(c, kStepFrequency);
+  w.bob_amplitude_m = get(c, kBob);
+  w.sway_amplitude_m = get(c, kSway);
+  w.scan_amplitude_rad = get(c, defaulting_to(kScanAmplitude, w.scan_amplitude_rad));
+  w.scan_period_s = get(c, defaulting_to(kScanPeriod, w.scan_period_s));
 
   read_camera(c, s, preset);
   read_labels(c, s);
