@@ -11,9 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/experiments/figure_script.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 #include "navaid/interaction/cue_session.hpp"
 #include "navaid/interaction/cue_timeline_csv.hpp"
 #include "navaid/interaction/device_link.hpp"
@@ -93,6 +95,7 @@ void run(const CuesArgs& a) {
   if (a.speech == "text") overrides.push_back("interaction.speech.mode=text");
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", overrides)
                                               : Config::load(a.config_file, overrides);
+  const ConfigReads reads(config);
   const CueGeneratorConfig generator = read_cue_generator_config(config);
   const CuePolicyConfig policy = read_cue_policy_config(config);
   const std::unique_ptr<DeviceAdapter> device = make_device_adapter(*kind, config);
@@ -100,7 +103,10 @@ void run(const CuesArgs& a) {
   if (!(a.speed > 0.0)) throw UsageError(fmt::format("--speed must be positive, not {}", a.speed));
   std::unique_ptr<DeviceLink> link;
   if (!a.port.empty()) link = std::make_unique<DeviceLink>(a.port, *kind, config);
-  config.reject_unknown_keys();
+  ConfigSchema schema = cue_generator_config_schema();
+  schema.add(cue_policy_config_schema()).add(device_adapter_schema(*kind)).add(speech_config_schema());
+  if (!a.port.empty()) schema.add(link_config_schema());
+  config.reject_unknown_keys(schema);
   std::unique_ptr<SynthesizedSpeech> speech;
   if (a.speech != "off") speech = std::make_unique<SynthesizedSpeech>(speech_config);
   const std::vector<GuidanceTimelineEntry> timeline = merged_timeline(a.guidance);
@@ -151,7 +157,7 @@ void run(const CuesArgs& a) {
   };
   if (link) summary["link"] = link->report().to_json();
   std::ofstream(a.out / "summary.json") << summary.dump(2) << "\n";
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
   if (!a.no_figure) {
     std::string joined;
     for (const std::string& n : names) joined += (joined.empty() ? "" : ",") + n;

@@ -23,7 +23,9 @@
 #include "map_poses.hpp"
 #include "navaid/core/camera.hpp"
 #include "navaid/core/config.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/io/image_io.hpp"
@@ -31,6 +33,7 @@
 #include "navaid/core/csv_field.hpp"
 #include "navaid/planning/angles.hpp"
 #include "navaid/planning/apriltag_detector.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/hand_guidance.hpp"
 #include "navaid/simulation/apriltag_image.hpp"
 #include "navaid/experiments/progress.hpp"
@@ -123,12 +126,14 @@ void run(const HandGuideArgs& a) {
 
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
+  const ConfigReads reads(config);
   planning::AprilTagDetectorConfig detector_config = planning::read_apriltag_detector_config(config);
   const planning::HandGuidanceConfig guidance_config = planning::read_hand_guidance_config(config);
-  const std::vector<double> t_H_C =
-      config.has("planning.hand.t_H_C_m") ? config.get_doubles("planning.hand.t_H_C_m", 3, {-2.0, 2.0})
-                                          : std::vector<double>{0.0, 0.0, 0.0};
-  config.reject_unknown_keys();
+  const std::vector<double> t_H_C = get(config, experiments::hand_camera_translation_key());
+  config.reject_unknown_keys(ConfigSchema()
+                                 .add(planning::apriltag_detector_config_schema())
+                                 .add(planning::hand_guidance_config_schema())
+                                 .add(experiments::hand_camera_translation_key()));
   const SE3 T_H_C(Quat::Identity(), Vec3(t_H_C[0], t_H_C[1], t_H_C[2]));
 
   const io::Recording recording = read_camera_recording(a.recording, "camera images");
@@ -330,7 +335,7 @@ void run(const HandGuideArgs& a) {
       t["remembered_error_m"] = (*last_remembered_W - truth_target->T_W_tag.t).norm();
   }
   std::ofstream(a.out / "summary.json") << s.dump(2) << "\n";
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
 
   std::cout << fmt::format("{} frames, tag {} {} detected in {}", frames.size(), detector_config.family, tag_id,
                            detected_frames);

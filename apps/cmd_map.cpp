@@ -9,10 +9,13 @@
 #include "commands.hpp"
 #include "input_option.hpp"
 #include "map_poses.hpp"
+#include "navaid/core/config_reads.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/map_session.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/experiments/progress.hpp"
+#include "navaid/mapping/config_schema.hpp"
 
 namespace navaid::cli {
 
@@ -43,11 +46,12 @@ void run_map(const MapArgs& a) {
   if (!(a.png_every_s >= 0)) throw UsageError("--png-every must be 0 or positive");
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
+  const ConfigReads reads(config);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
   MapSessionOptions options{a.snapshot_every_s, a.png_every_s, !a.no_quality, 0};
   read_obstacle_options(config, options);
   options.network = mapping::read_segmentation_link_config(config);
-  config.reject_unknown_keys();
+  config.reject_unknown_keys(mapping::mapper_config_schema().add(experiments::map_session_options_schema()));
 
   const io::Recording recording = read_camera_recording(a.recording, "RGB-D frames");
   if (recording.calibration.cameras.empty()) throw Error(a.recording.string() + ": no camera in the calibration");
@@ -94,7 +98,7 @@ void run_map(const MapArgs& a) {
   head["poses"] = a.poses == "groundtruth" ? std::string("groundtruth")
                                            : std::filesystem::absolute(a.run / "estimates.csv").string();
   const auto summary = session.finish(head);
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
   const auto& f = summary["frames"];
   std::cout << fmt::format("mapped {} of {} frames ({} not localised, {} too uncertain, {} without depth, {} without "
                            "pose); {:.1f} ms median per mapped frame\n",

@@ -6,10 +6,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "command_schemas.hpp"
 #include "commands.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/mapping/esdf_2d.hpp"
 #include "navaid/planning/angles.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/local_planner.hpp"
 #include "navaid/planning/plan_png.hpp"
 #include "plan_map.hpp"
@@ -60,9 +63,10 @@ int run(const PlanArgs& a) {
   }
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
+  const ConfigReads reads(config);
   const std::unique_ptr<planning::LocalPlanner> planner = planning::make_local_planner(a.planner, config);
   const PlanMap map = load_plan_map(a.map, config);
-  config.reject_unknown_keys();
+  config.reject_unknown_keys(planning::local_planner_schema(a.planner).add(plan_map_schema()));
 
   mapping::Esdf2d esdf;
   esdf.update(map.cost);
@@ -84,7 +88,7 @@ int run(const PlanArgs& a) {
   if (a.direction_deg) j["direction_deg"] = *a.direction_deg;
   j["sigma_xy_m"] = a.sigma_xy;
   std::ofstream(a.out / "plan.json") << j.dump(2) << "\n";
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
   planning::write_plan_png(a.out / "plan.png", map.cost, problem, {{std::string(planner->name()), &plan}});
   std::cout << map.description << "\n";
   if (plan.found()) {

@@ -10,8 +10,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 #include "navaid/interaction/route_timeline.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/foot_router.hpp"
 #include "navaid/planning/route_narration.hpp"
 #include "navaid/planning/route_png.hpp"
@@ -79,11 +82,15 @@ int run(const RouteArgs& a) {
   const planning::GeoPoint to = point(a.to, "--to");
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
+  const ConfigReads reads(config);
   const planning::FootRouteConfig route_config = planning::foot_route_config(config);
   const planning::SubRouteConfig sub_config = planning::sub_route_config(config);
   const planning::NarrationConfig narration_config = planning::narration_config(config);
   const interaction::RouteTimelineConfig timeline_config = interaction::read_route_timeline_config(config);
-  config.reject_unknown_keys();
+  config.reject_unknown_keys(planning::foot_route_config_schema()
+                                 .add(planning::sub_route_config_schema())
+                                 .add(planning::narration_config_schema())
+                                 .add(interaction::route_timeline_config_schema()));
 
   const planning::FootGraph graph = planning::load_osm_foot_graph(a.osm);
   const planning::FootRouter router(graph, route_config);
@@ -147,7 +154,7 @@ int run(const RouteArgs& a) {
       text << "No route: " << r.reason << "\n";
     }
   }
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
   const std::string legend =
       r.found() ? fmt::format("{:.0f} m, {} crossings, {:.0f} m of steps, {} nodes", r.length_m, r.crossings.size(),
                               r.steps_m, r.expanded)

@@ -10,10 +10,12 @@
 
 #include "commands.hpp"
 #include "navaid/core/config.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/core/time.hpp"
 #include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/planning/byu_cost_functions.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/obstacle_scan_csv.hpp"
 
 namespace navaid::cli {
@@ -36,8 +38,9 @@ void run(const RumbleArgs& a) {
   if (!function) throw UsageError(fmt::format("--function must be ficf or cacf, not '{}'", a.function));
   const Config config = a.config_file.empty() ? Config::parse("{}", "<defaults>", a.overrides)
                                               : Config::load(a.config_file, a.overrides);
+  const ConfigReads reads(config);
   const planning::ByuCostConfig byu = planning::read_byu_cost_config(config);
-  config.reject_unknown_keys();
+  config.reject_unknown_keys(planning::byu_cost_config_schema());
   const std::vector<mapping::ObstacleScan> scans = planning::read_obstacle_scan_csv(a.scans);
   const planning::ByuThresholds& thresholds = planning::byu_thresholds(*function, byu);
 
@@ -83,7 +86,7 @@ void run(const RumbleArgs& a) {
       {"duration_s", scans.size() > 1 ? ns_to_seconds(scans.back().t - scans.front().t) : 0.0},
   };
   std::ofstream(a.out / "summary.json") << summary.dump(2) << "\n";
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
 
   std::cout << fmt::format("{}: {} scans, thresholds forward {} / left-right {}\n", planning::to_string(*function),
                            scans.size(), thresholds.forward, thresholds.left_right);

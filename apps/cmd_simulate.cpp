@@ -9,10 +9,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "command_schemas.hpp"
 #include "commands.hpp"
 #include "navaid/core/config.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/io/euroc.hpp"
+#include "navaid/simulation/config_schema.hpp"
 #include "navaid/simulation/recorded_motion.hpp"
 #include "navaid/simulation/simulator.hpp"
 #include "navaid/experiments/progress.hpp"
@@ -79,6 +82,7 @@ nlohmann::ordered_json summary_json(const simulation::SimulationConfig& c, const
 // --from-recording: the folder's real IMU and ground truth, its camera simulated in a world around
 // the flight (the flight room unless --scenario names one).
 void run_from_recording(const SimulateArgs& a, const Config& config) {
+  const ConfigReads reads(config);
   namespace fs = std::filesystem;
   for (const auto& [flag, file] : {std::pair{"--imu-calibration", a.imu_calibration}, {"--camera-calibration", a.camera_calibration}})
     if (!file.empty() && !fs::is_regular_file(file)) throw UsageError(std::string(flag) + " " + file.string() + ": no such file");
@@ -95,10 +99,9 @@ void run_from_recording(const SimulateArgs& a, const Config& config) {
   const simulation::Scenario scenario =
       config.has("scenario")
           ? simulation::make_scenario(simulation::read_scenario_name(config), simulation::read_scenario_options(config))
-          : simulation::make_flight_room(motion.bounds(),
-                                         static_cast<std::uint64_t>(config.get_int("simulation.world_seed", 1, 1, 1LL << 62)));
+          : simulation::make_flight_room(motion.bounds(), static_cast<std::uint64_t>(get(config, flight_room_seed_key())));
   simulation::SimulationConfig sim = simulation::read_simulation_config(config, scenario);
-  config.reject_unknown_keys();
+  config.reject_unknown_keys(simulation::simulation_config_schema());
   sim.imu = *source.calibration.imu;  // the real IMU's own noise model
   if (!a.camera_calibration.empty()) {
     sim.camera = io::read_euroc_camera_yaml(a.camera_calibration, "cam0");
@@ -115,7 +118,7 @@ void run_from_recording(const SimulateArgs& a, const Config& config) {
   options.overwrite = a.overwrite;
   spdlog::info("simulating the camera of {} in {}, seed {}", a.from_recording.string(), scenario.name, sim.seed);
   const auto summary = simulation::simulate_recorded_motion(scenario, sim, source, a.out, options);
-  std::ofstream(a.out / "simulation.yaml") << config.dump();
+  std::ofstream(a.out / "simulation.yaml") << config.dump(reads.defaults());
   auto json = summary_json(sim, summary);
   json["scenario"] = scenario.name;
   json["from_recording"] = std::filesystem::absolute(a.from_recording).string();
@@ -138,10 +141,11 @@ void run(const SimulateArgs& a) {
     return run_from_recording(a, build_config(a));
   }
   const Config config = build_config(a);
+  const ConfigReads reads(config);
   const std::string name = simulation::read_scenario_name(config);
   const simulation::Scenario scenario = simulation::make_scenario(name, simulation::read_scenario_options(config));
   const simulation::SimulationConfig sim = simulation::read_simulation_config(config, scenario);
-  config.reject_unknown_keys();
+  config.reject_unknown_keys(simulation::simulation_config_schema());
 
   simulation::SimulateOptions options;
   if (!a.cache.empty()) options.cache_dir = a.cache;
@@ -158,7 +162,7 @@ void run(const SimulateArgs& a) {
   const auto summary = simulation::simulate(scenario, sim, a.out, options);
   if (progress) progress->finish();
 
-  std::ofstream(a.out / "simulation.yaml") << config.dump();
+  std::ofstream(a.out / "simulation.yaml") << config.dump(reads.defaults());
   const auto json = summary_json(sim, summary);
   std::ofstream(a.out / "summary.json") << json.dump(2) << "\n";
   std::cout << fmt::format(

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <octomap/OcTree.h>
 
+#include "command_schemas.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/scenario_cost_map.hpp"
 #include "navaid/io/occupancy_map_file.hpp"
@@ -55,7 +56,7 @@ PlanMap from_voxels(const mapping::MapVoxels& voxels, double resolution, const s
   const mapping::Cell2 lo_cell((lo.head<2>() / resolution).array().floor().cast<int>());
   const mapping::Cell2 hi_cell((hi.head<2>() / resolution).array().floor().cast<int>());
   const mapping::GridGeometry g(lo_cell, hi_cell.x() - lo_cell.x() + 1, hi_cell.y() - lo_cell.y() + 1, resolution);
-  const double camera_z = config.get_double("planning.map.camera_z_m", 1.5, {-1000.0, 1000.0});
+  const double camera_z = get(config, octomap_camera_height_key());
   const mapping::HeightMap height = mapping::build_height_map(voxels, g, camera_z, mapping::read_height_map_config(config));
   const mapping::UndulationMap undulation = mapping::build_undulation_map(height, mapping::read_undulation_config(config));
   const mapping::CollisionMap collision =

@@ -8,7 +8,9 @@
 #include <fstream>
 #include <random>
 
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/targets_csv.hpp"
 #include "navaid/estimation/estimator_config.hpp"
@@ -22,6 +24,7 @@
 #include "navaid/experiments/reach_protocol.hpp"
 #include "navaid/mapping/pose_uncertainty.hpp"
 #include "navaid/planning/path_guidance.hpp"
+#include "navaid/simulation/config_schema.hpp"
 #include "navaid/simulation/online_sensors.hpp"
 #include "navaid/simulation/osm_export.hpp"
 #include "navaid/simulation/person_motion.hpp"
@@ -84,23 +87,78 @@ std::vector<simulation::Vec2> route_turns(const std::vector<simulation::Vec2>& p
 
 }  // namespace
 
+namespace {
+const ConfigKey<std::string> kTask{"trial.task", std::nullopt, {"walk", "reach"},
+                                   "walk to the goal, or reach for an object; default: reach with a hand-target "
+                                   "device, else walk"};
+const ConfigKey<int> kRenderWidth{"trial.render_width", std::nullopt, 16, 4096,
+                                  "width of the images rendered for the device [px]; default 320 for a reach, else "
+                                  "160"};
+const ConfigKey<double> kContactRate{"trial.contact_rate_hz", 20.0, {1.0, 1000.0},
+                                     "rate of the body's and cane's contact checks [Hz]"};
+const ConfigKey<double> kGuidanceCheck{"trial.guidance_check_m", 0.7, {0.05, 10.0},
+                                       "a guidance into an obstacle is checked this far ahead [m]"};
+const ConfigKey<double> kRouteTurn{"trial.route_turn_deg", 60.0, {0.0, 180.0},
+                                   "path corners sharper than this are the person's turn points [deg]"};
+const ConfigKey<double> kTurnReach{"trial.turn_reach_m", 0.8, {0.1, 5.0}, "a turn point counts as reached within "
+                                                                          "this [m]"};
+const ConfigKey<double> kFaceTolerance{"trial.face_tolerance_deg", 45.0, {1.0, 180.0},
+                                       "facing the destination's landmark within this [deg]"};
+const ConfigKey<double> kTimeout{"trial.timeout_s", std::nullopt, {1.0, 36000.0},
+                                 "a trial fails after this [s]; default: 3 x the walk at the user's speed + 20 s (a "
+                                 "reach: locate + 60 s + its time limit)"};
+const ConfigKey<bool> kFaceLandmark{"trial.face_landmark", std::nullopt,
+                                    "success needs facing the destination's landmark (eLabrador); default: with route "
+                                    "guidance"};
+const ConfigKey<double> kGoalRadius{"trial.goal_radius_m", std::nullopt, {0.1, 10.0},
+                                    "arrived within this of the path's end [m]; default 3 when facing a landmark, else "
+                                    "0.6"};
+const ConfigKey<double> kSettle{"trial.settle_s", 3.0, {0.0, 60.0}, "a route trial ends this long after arrival [s]"};
+const ConfigKey<double> kTurnPointSigma{"trial.turn_point_sigma_m", 0.0, {0.0, 50.0},
+                                        "error per axis of the turn points a goal-knowing person learns [m]"};
+const ConfigKey<bool> kSaveRecording{"trial.save_recording", false,
+                                     "write the device's sensor streams and true states as a navaid recording"};
+const ConfigKey<double> kWalkOffSpeed{"trial.walk_off_speed_factor", 0.7, {0.1, 1.0},
+                                      "route guidance: the person walks off at this share of their speed"};
+}  // namespace
+
+ConfigSchema trial_schema() {
+  return ConfigSchema()
+      .add(kTask)
+      .add(kRenderWidth)
+      .add(kContactRate)
+      .add(kGuidanceCheck)
+      .add(kRouteTurn)
+      .add(kTurnReach)
+      .add(kFaceTolerance)
+      .add(frontend_rate_key())
+      .add(kTimeout)
+      .add(kFaceLandmark)
+      .add(kGoalRadius)
+      .add(kSettle)
+      .add(kTurnPointSigma)
+      .add(kSaveRecording)
+      .add(kWalkOffSpeed);
+}
+
 TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const auto wall0 = Clock::now();
   Config config = spec.config;
   config.apply_override("scenario=" + spec.scenario);
   config.apply_override(fmt::format("simulation.world_seed={}", spec.world_seed));
   config.apply_override(fmt::format("seed={}", spec.seed));
+  const ConfigReads reads(config);  // config.yaml: the given keys and the defaults the trial used
   const bool with_device = config.has("device.name");
   // W-ROMA's task, reaching for an object (reach_protocol.hpp): a hand-target device's by default.
-  const bool hand_device = with_device && config.has("device.guidance") &&
-                           config.get_string("device.guidance") == to_string(GuidanceKind::kHandTarget);
-  const bool reach_task = config.get_string("trial.task", hand_device ? "reach" : "walk", {"walk", "reach"}) == "reach";
+  const bool hand_device = with_device && config.has(device_guidance_key().name) &&
+                           get(config, device_guidance_key()) == to_string(GuidanceKind::kHandTarget);
+  const bool reach_task = get(config, defaulting_to(kTask, std::string(hand_device ? "reach" : "walk"))) == "reach";
   if (reach_task && !config.has("simulation.targets")) config.apply_override("simulation.targets=true");
   // A person searching with the hand points it level (the hand mount's 10 deg pitch is a walk's):
   // the hand unit's aligned cone (5 deg far away) is then reachable.
   if (reach_task && !config.has("mount_pitch_deg")) config.apply_override("mount_pitch_deg=0");
   if (with_device && !config.has("mount")) {
-    const auto actuator = interaction::device_kind_from_string(config.get_string("device.actuator"));
+    const auto actuator = interaction::device_kind_from_string(get(config, device_actuator_key()));
     if (actuator) config.apply_override("mount=" + device_mount(*actuator));
   }
   const simulation::ScenarioOptions scenario_options = simulation::read_scenario_options(config);
@@ -113,14 +171,15 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
 
   // The trial's own keys.
   // The tag detector of a hand-target device needs more pixels than mapping does.
-  const int render_width = static_cast<int>(config.get_int("trial.render_width", reach_task ? 320 : 160, 16, 4096));
-  const double contact_rate = config.get_double("trial.contact_rate_hz", 20.0, {1.0, 1000.0});
-  const double check_m = config.get_double("trial.guidance_check_m", 0.7, {0.05, 10.0});
-  const double route_turn_rad = config.get_double("trial.route_turn_deg", 60.0, {0.0, 180.0}) * M_PI / 180.0;
-  const double turn_reach_m = config.get_double("trial.turn_reach_m", 0.8, {0.1, 5.0});
-  const double face_tolerance = config.get_double("trial.face_tolerance_deg", 45.0, {1.0, 180.0}) * M_PI / 180.0;
-  const double camera_rate = with_device ? config.get_double("frontend.rate_hz", sim.camera.rate_hz, {1.0, 200.0})
-                                         : sim.camera.rate_hz;
+  const int render_width = get(config, defaulting_to(kRenderWidth, reach_task ? 320 : 160));
+  const double contact_rate = get(config, kContactRate);
+  const double check_m = get(config, kGuidanceCheck);
+  const double route_turn_rad = get(config, kRouteTurn) * M_PI / 180.0;
+  const double turn_reach_m = get(config, kTurnReach);
+  const double face_tolerance = get(config, kFaceTolerance) * M_PI / 180.0;
+  const double camera_rate =
+      with_device ? get(config, within(defaulting_to(frontend_rate_key(), sim.camera.rate_hz), {1.0, 200.0}))
+                  : sim.camera.rate_hz;
 
   // Start, goal and the nominal walk (the landmarks lie along it; the timeout scales with it).
   const simulation::Vec2 start = scenario.path.front(), goal = scenario.path.back();
@@ -136,11 +195,9 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
                   with_device, spec.seed);
     hand.emplace(simulation::read_hand_motion_config(config));
   }
-  const double timeout_s = config.get_double(
-      "trial.timeout_s",
-      reach ? reach->config().locate_s + 60.0 + reach->config().time_limit_s  // + the escort
-            : 3.0 * nominal.length() / user_model.speed_mps + 20.0,
-      {1.0, 36000.0});
+  const double timeout_s = get(config, defaulting_to(kTimeout, reach ? reach->config().locate_s + 60.0 +
+                                                                          reach->config().time_limit_s  // + the escort
+                                                                    : 3.0 * nominal.length() / user_model.speed_mps + 20.0));
 
   std::optional<DeviceSpec> device;
   if (with_device) {
@@ -162,7 +219,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   // eLabrador's success (§V-E): arrived and facing the destination's landmark. A route trial ends
   // where the person stops, trial.settle_s after they arrived (the turn to face it).
   const bool needs_facing =
-      !reach_task && config.get_bool("trial.face_landmark", device && device->guidance == GuidanceKind::kRoute);
+      !reach_task && get(config, defaulting_to(kFaceLandmark, device && device->guidance == GuidanceKind::kRoute));
   std::optional<simulation::Vec2> landmark;
   if (needs_facing) {
     if (!simulation::has_streets(scenario.name))
@@ -172,15 +229,15 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     landmark = streets.landmarks.at(streets.goal_landmark).xy;
   }
   // Arrived: within this of the path's end (a route's destination as the experimenter judges it).
-  const double goal_radius = config.get_double("trial.goal_radius_m", needs_facing ? 3.0 : 0.6, {0.1, 10.0});
-  const double settle_s = config.get_double("trial.settle_s", 3.0, {0.0, 60.0});
+  const double goal_radius = get(config, defaulting_to(kGoalRadius, needs_facing ? 3.0 : 0.6));
+  const double settle_s = get(config, kSettle);
   // A goal-known person's turn points as they learn them on the way (a phone's GPS navigation: the
   // cane users of the eLabrador study followed Amap): each off by this sigma per axis.
-  const double turn_point_sigma = config.get_double("trial.turn_point_sigma_m", 0.0, {0.0, 50.0});
+  const double turn_point_sigma = get(config, kTurnPointSigma);
   const ExperimenterConfig experimenter_config = read_experimenter_config(config, needs_facing);
   // The device's sensor streams and the true states as a navaid recording (recording/), so that
   // `navaid run` and `navaid eval` replay the estimator on exactly what it met in the trial.
-  const bool save_recording = config.get_bool("trial.save_recording", false);
+  const bool save_recording = get(config, kSaveRecording);
   if (save_recording && !with_device)
     throw ConfigError(config.origin("trial.save_recording"), "trial.save_recording",
                       "needs a device (--device): a trial without one has no sensors to record");
@@ -212,12 +269,10 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   std::deque<simulation::Instruction> felt;
   double trial_clock_s = 0;
   if (device) {
-    estimation::read_frontend_config(config);  // a preset's front-end keys: the trial feeds features
     driver.emplace(estimation::SlidingWindowEstimator(
         recording.calibration, estimation::read_estimator_config(config), sim.camera.name, recording.origin));
     MapSessionOptions map_options = read_map_session_options(config);
     map_options.quality = false;  // a trial scores the walk, not the map
-    config.get_bool("mapping.enabled", true);
     DeviceRunOptions options;
     options.threaded = false;  // deterministic, and the person reacts to this frame's cues
     options.figures = false;
@@ -227,9 +282,18 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     };
     device_run = std::make_unique<DeviceRun>(*device, config, recording, out, render_camera, out, map_options, options);
   }
-  config.reject_unknown_keys();
+  // A device's preset may hold the front end's keys and mapping.enabled: the trial feeds the
+  // estimator features and always maps, yet they are its keys.
+  ConfigSchema schema = simulation::simulation_config_schema();
+  schema.add(simulation::user_model_schema()).add(trial_schema()).add(experimenter_config_schema());
+  if (reach_task)
+    schema.add(reach_protocol_config_schema())
+        .add(simulation::reach_model_schema())
+        .add(simulation::hand_motion_config_schema());
+  if (device) schema.add(run_schema(&*device));
+  config.reject_unknown_keys(schema);
   {
-    std::ofstream(out / "config.yaml") << config.dump();
+    std::ofstream(out / "config.yaml") << config.dump(reads.defaults());
   }
 
   // The person.
@@ -255,7 +319,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   if (needs_facing && goal_known) user.stop_at_goal();
   Experimenter experimenter(experimenter_config, scenario.path);
   if (device && device->guidance == GuidanceKind::kRoute)
-    user.walk_off(start_heading, config.get_double("trial.walk_off_speed_factor", 0.7, {0.1, 1.0}));
+    user.walk_off(start_heading, get(config, kWalkOffSpeed));
   simulation::ContactMonitor contacts(scenario.world, scenario.ground_z_m, user_model.body, user_model.cane);
   std::optional<simulation::OnlineSensors> sensors;
   if (device) sensors.emplace(scenario, sim, nominal, render_camera);

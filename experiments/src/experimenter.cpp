@@ -1,5 +1,7 @@
 #include "navaid/experiments/experimenter.hpp"
 
+#include "navaid/experiments/config_schema.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,12 +11,27 @@ namespace navaid::experiments {
 
 using Vec2 = Eigen::Vector2d;
 
+namespace {
+const ConfigKey<double> kOffRoute{"trial.correction.off_route_m", std::nullopt, {0.0, 1000.0},
+                                  "the experimenter corrects a person this far off the route [m]; 0: never; "
+                                  "default 5 in route studies, else 0"};
+const ConfigKey<double> kStuck{"trial.correction.stuck_s", std::nullopt, {0.0, 36000.0},
+                               "the experimenter corrects a person standing this long [s]; 0: never; default 30 in "
+                               "route studies, else 0"};
+const ConfigKey<double> kAhead{"trial.correction.ahead_m", ExperimenterConfig{}.ahead_m, {0.5, 100.0},
+                               "a correction leads the person this far ahead along the route [m]"};
+const ConfigKey<double> kCooldown{"trial.correction.cooldown_s", ExperimenterConfig{}.cooldown_s, {0.0, 3600.0},
+                                  "least time between two corrections [s]"};
+}  // namespace
+
+ConfigSchema experimenter_config_schema() { return ConfigSchema().add(kOffRoute).add(kStuck).add(kAhead).add(kCooldown); }
+
 ExperimenterConfig read_experimenter_config(const Config& config, bool route_study) {
   ExperimenterConfig c;
-  c.off_route_m = config.get_double("trial.correction.off_route_m", route_study ? 5.0 : 0.0, {0.0, 1000.0});
-  c.stuck_s = config.get_double("trial.correction.stuck_s", route_study ? 30.0 : 0.0, {0.0, 36000.0});
-  c.ahead_m = config.get_double("trial.correction.ahead_m", c.ahead_m, {0.5, 100.0});
-  c.cooldown_s = config.get_double("trial.correction.cooldown_s", c.cooldown_s, {0.0, 3600.0});
+  c.off_route_m = get(config, defaulting_to(kOffRoute, route_study ? 5.0 : 0.0));
+  c.stuck_s = get(config, defaulting_to(kStuck, route_study ? 30.0 : 0.0));
+  c.ahead_m = get(config, kAhead);
+  c.cooldown_s = get(config, kCooldown);
   return c;
 }
 

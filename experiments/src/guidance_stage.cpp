@@ -1,5 +1,7 @@
 #include "navaid/experiments/guidance_stage.hpp"
 
+#include "navaid/experiments/config_schema.hpp"
+
 namespace navaid::experiments {
 
 std::unique_ptr<GuidanceStage> make_guidance_stage(const GuidanceStageContext& context) {
@@ -10,6 +12,13 @@ std::unique_ptr<GuidanceStage> make_guidance_stage(const GuidanceStageContext& c
     case GuidanceKind::kHandTarget: return make_hand_target_stage(context);
   }
   return nullptr;
+}
+
+ConfigSchema guidance_stages_schema() {
+  return route_guidance_stage_schema()
+      .add(walking_path_stage_schema())
+      .add(obstacle_rumble_stage_schema())
+      .add(hand_target_stage_schema());
 }
 
 planning::GuidanceCommand waiting_command(Timestamp t, planning::GuidanceReason reason, std::string detail) {

@@ -9,17 +9,22 @@
 
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/targets_csv.hpp"
 #include "navaid/planning/apriltag_detector.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/hand_guidance.hpp"
 
 namespace navaid::experiments {
 namespace {
 
+const ConfigKey<int> kTagId{"device.tag_id", std::nullopt, 0, 586,
+                            "hand-target guidance: the object's tag; absent: the recording's targets.csv"};
+
 int target_tag_id(const GuidanceStageContext& c, const std::string& family) {
-  if (c.config.has("device.tag_id")) return static_cast<int>(c.config.get_int("device.tag_id", 0, 586));
+  if (c.config.has(kTagId.name)) return get(c.config, kTagId);
   const auto file = c.recording_dir / io::kTargetsCsv;
   if (std::filesystem::exists(file))
     for (const auto& t : io::read_targets_csv(file))
@@ -29,11 +34,21 @@ int target_tag_id(const GuidanceStageContext& c, const std::string& family) {
 }
 
 SE3 hand_from_camera(const Config& config) {
-  const std::vector<double> t = config.has("planning.hand.t_H_C_m")
-                                    ? config.get_doubles("planning.hand.t_H_C_m", 3, {-2.0, 2.0})
-                                    : std::vector<double>{0.0, 0.0, 0.0};
+  const std::vector<double> t = get(config, hand_camera_translation_key());
   return SE3(Quat::Identity(), Vec3(t[0], t[1], t[2]));
 }
+
+}  // namespace
+
+ConfigSchema hand_target_stage_schema() {
+  return ConfigSchema()
+      .add(kTagId)
+      .add(hand_camera_translation_key())
+      .add(planning::apriltag_detector_config_schema())
+      .add(planning::hand_guidance_config_schema());
+}
+
+namespace {
 
 class HandTargetStage final : public GuidanceStage {
  public:

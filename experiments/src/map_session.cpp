@@ -8,7 +8,9 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/evaluation/start_alignment.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/io/image_io.hpp"
+#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/map_png.hpp"
 #include "navaid/simulation/simulation_config.hpp"
 #include "navaid/runtime/estimator_pipeline.hpp"
@@ -88,11 +90,24 @@ std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording) {
   return gt;
 }
 
+const ConfigKey<bool> kObstaclesEnabled{"mapping.obstacles.enabled", false,
+                                        "run the BYU obstacle pipeline (mapping.obstacles.*) on every mapped frame"};
+const ConfigKey<double> kObstaclePriorHeight{"mapping.obstacles.prior_camera_height_m",
+                                             MapSessionOptions{}.obstacle_prior_camera_height_m, {0.05, 5.0},
+                                             "the obstacle pipeline's prior camera height above the ground [m]"};
+
 void read_obstacle_options(const Config& config, MapSessionOptions& options) {
-  if (!config.get_bool("mapping.obstacles.enabled", false)) return;
+  if (!get(config, kObstaclesEnabled)) return;
   options.obstacles = mapping::read_obstacle_pipeline_config(config);
-  options.obstacle_prior_camera_height_m = config.get_double("mapping.obstacles.prior_camera_height_m",
-                                                             options.obstacle_prior_camera_height_m, {0.05, 5.0});
+  options.obstacle_prior_camera_height_m = get(config, kObstaclePriorHeight);
+}
+
+ConfigSchema map_session_options_schema() {
+  return ConfigSchema()
+      .add(kObstaclesEnabled)
+      .add(kObstaclePriorHeight)
+      .add(mapping::obstacle_pipeline_config_schema())
+      .add(mapping::segmentation_link_config_schema());
 }
 
 MapSessionOptions read_map_session_options(const Config& config) {

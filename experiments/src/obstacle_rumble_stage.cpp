@@ -4,17 +4,22 @@
 // attitude only, no position, so there is nothing to wait for once a scan exists.
 #include <array>
 
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
 #include "navaid/planning/byu_cost_functions.hpp"
+#include "navaid/planning/config_schema.hpp"
 
 namespace navaid::experiments {
 namespace {
+
+const ConfigKey<std::string> kCostFunction{"device.cost_function", std::string("cacf"), {"ficf", "cacf"},
+                                           "obstacle-rumble guidance: BYU's cost function"};
 
 class ObstacleRumbleStage final : public GuidanceStage {
  public:
   explicit ObstacleRumbleStage(const GuidanceStageContext& c)
       : function_(*planning::byu_cost_function_from_string(
-            c.config.get_string("device.cost_function", std::string("cacf"), {"ficf", "cacf"}))),
+            get(c.config, kCostFunction))),
         config_(planning::read_byu_cost_config(c.config)) {}
 
   GuidanceOutput update(const GuidanceInput& in) override {
@@ -46,6 +51,10 @@ class ObstacleRumbleStage final : public GuidanceStage {
 };
 
 }  // namespace
+
+ConfigSchema obstacle_rumble_stage_schema() {
+  return ConfigSchema().add(kCostFunction).add(planning::byu_cost_config_schema());
+}
 
 std::unique_ptr<GuidanceStage> make_obstacle_rumble_stage(const GuidanceStageContext& context) {
   return std::make_unique<ObstacleRumbleStage>(context);

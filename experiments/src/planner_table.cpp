@@ -13,6 +13,7 @@
 #include "navaid/experiments/reproduction_statistics.hpp"
 #include "navaid/experiments/reproduction_verdict.hpp"
 #include "navaid/experiments/scenario_cost_map.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/plan_png.hpp"
 
 namespace navaid::experiments {
@@ -121,7 +122,7 @@ MapResult run_map(const PlannerTableSpec& spec, const PlannerTableMap& map, std:
       overrides.insert(overrides.end(), it->second.begin(), it->second.end());
     const Config c = Config::parse("{}", spec_file.string(), overrides);
     planners.push_back(planning::make_local_planner(p.planner, c));
-    c.reject_unknown_keys();
+    c.reject_unknown_keys(planning::local_planner_schema(p.planner));
     raw.push_back(planners.back().get());
   }
   PairSampling sampling;

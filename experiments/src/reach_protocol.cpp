@@ -5,6 +5,7 @@
 #include <random>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
 
 namespace navaid::experiments {
 
@@ -21,20 +22,62 @@ simulation::Vec2 face_normal(const simulation::TargetObject& t) {
 
 }  // namespace
 
+namespace {
+const ReachProtocolConfig kDefaults;
+const ConfigKey<double> kViewDistance{"trial.reach.view_distance_m", kDefaults.view_distance_m, {0.5, 5.0},
+                                      "the person is shown the object from this far [m]"};
+const ConfigKey<double> kLocate{"trial.reach.locate_s", kDefaults.locate_s, {0.0, 60.0},
+                                "time the device gets to locate the object first [s]"};
+const ConfigKey<double> kEscortSpeed{"trial.reach.escort_speed_mps", kDefaults.escort_speed_mps, {0.2, 1.5},
+                                     "speed of the escort to the start [m/s]"};
+const ConfigKey<double> kStartTurn{"trial.reach.start_turn_deg", kDefaults.start_turn_rad / kDeg, {-180.0, 180.0},
+                                   "the person starts turned away from the object by this [deg]"};
+const ConfigKey<double> kTimeLimit{"trial.reach.time_limit_s", kDefaults.time_limit_s, {5.0, 3600.0},
+                                   "a reach fails after this [s]"};
+const ConfigKey<double> kTouch{"trial.reach.touch_m", kDefaults.touch_m, {0.005, 0.3},
+                               "the fingers reach this far beyond the hand-worn unit [m]"};
+const ConfigKey<double> kGrasp{"trial.reach.grasp_m", kDefaults.grasp_m, {0.01, 0.5},
+                               "the object is grasped within this [m]"};
+const ConfigKey<double> kRangeSigma{"trial.reach.memory.range_sigma", kDefaults.range_sigma, {0.0, 1.0},
+                                    "relative error of the remembered distance to the object"};
+const ConfigKey<double> kBearingSigma{"trial.reach.memory.bearing_sigma_deg", kDefaults.bearing_sigma_rad / kDeg,
+                                      {0.0, 90.0}, "error of the remembered bearing to the object [deg]"};
+const ConfigKey<double> kHeightSigma{"trial.reach.memory.height_sigma_m", kDefaults.height_sigma_m, {0.0, 1.0},
+                                     "error of the remembered height of the object [m]"};
+const ConfigKey<std::vector<double>> kStartXy{"trial.reach.start_xy", std::nullopt, 2, {-1e4, 1e4},
+                                              "the person's start [x, y] in the world [m]; absent: view_distance_m "
+                                              "before the object"};
+}  // namespace
+
+ConfigSchema reach_protocol_config_schema() {
+  return ConfigSchema()
+      .add(kViewDistance)
+      .add(kLocate)
+      .add(kEscortSpeed)
+      .add(kStartTurn)
+      .add(kTimeLimit)
+      .add(kTouch)
+      .add(kGrasp)
+      .add(kRangeSigma)
+      .add(kBearingSigma)
+      .add(kHeightSigma)
+      .add(kStartXy);
+}
+
 ReachProtocolConfig read_reach_protocol_config(const Config& c) {
   ReachProtocolConfig r;
-  r.view_distance_m = c.get_double("trial.reach.view_distance_m", r.view_distance_m, {0.5, 5.0});
-  r.locate_s = c.get_double("trial.reach.locate_s", r.locate_s, {0.0, 60.0});
-  r.escort_speed_mps = c.get_double("trial.reach.escort_speed_mps", r.escort_speed_mps, {0.2, 1.5});
-  r.start_turn_rad = c.get_double("trial.reach.start_turn_deg", r.start_turn_rad / kDeg, {-180.0, 180.0}) * kDeg;
-  r.time_limit_s = c.get_double("trial.reach.time_limit_s", r.time_limit_s, {5.0, 3600.0});
-  r.touch_m = c.get_double("trial.reach.touch_m", r.touch_m, {0.005, 0.3});
-  r.grasp_m = c.get_double("trial.reach.grasp_m", r.grasp_m, {0.01, 0.5});
-  r.range_sigma = c.get_double("trial.reach.memory.range_sigma", r.range_sigma, {0.0, 1.0});
-  r.bearing_sigma_rad = c.get_double("trial.reach.memory.bearing_sigma_deg", r.bearing_sigma_rad / kDeg, {0.0, 90.0}) * kDeg;
-  r.height_sigma_m = c.get_double("trial.reach.memory.height_sigma_m", r.height_sigma_m, {0.0, 1.0});
-  if (c.has("trial.reach.start_xy")) {
-    const std::vector<double> xy = c.get_doubles("trial.reach.start_xy", 2, {-1e4, 1e4});
+  r.view_distance_m = get(c, kViewDistance);
+  r.locate_s = get(c, kLocate);
+  r.escort_speed_mps = get(c, kEscortSpeed);
+  r.start_turn_rad = get(c, kStartTurn) * kDeg;
+  r.time_limit_s = get(c, kTimeLimit);
+  r.touch_m = get(c, kTouch);
+  r.grasp_m = get(c, kGrasp);
+  r.range_sigma = get(c, kRangeSigma);
+  r.bearing_sigma_rad = get(c, kBearingSigma) * kDeg;
+  r.height_sigma_m = get(c, kHeightSigma);
+  if (c.has(kStartXy.name)) {
+    const std::vector<double> xy = get(c, kStartXy);
     r.start_xy = simulation::Vec2(xy[0], xy[1]);
   }
   return r;

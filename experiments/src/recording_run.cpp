@@ -34,6 +34,8 @@
 #include "navaid/experiments/run_output_stream.hpp"
 #include "navaid/experiments/run_topview.hpp"
 
+#include "navaid/core/config_reads.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/figure_script.hpp"
 
@@ -131,21 +133,25 @@ double stage_total_s(const nlohmann::ordered_json& stages) {
   return total;
 }
 
+const ConfigKey<bool> kRealtimePrediction{"device.realtime_prediction", true,
+                                          "--realtime: the device's stages work on the estimate predicted to a "
+                                          "frame's arrival"};
+
 // The run on a recording folder (run_recording converts a bag into one first).
 std::string run_recording_folder(const RecordingRunOptions& a) {
   if (a.realtime) validate(a.realtime_options);
   const Config& config = a.config;
+  const ConfigReads reads(config);  // config.yaml: the given keys and the defaults the run used
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
-  const double camera_rate_hz = config.get_double("frontend.rate_hz", 0.0, {0.0, 1000.0});
+  const double camera_rate_hz = get(config, frontend_rate_key());
   const std::optional<DeviceSpec> device =
       config.has("device.name") ? std::optional<DeviceSpec>(read_device_spec(config)) : std::nullopt;
   // A device maps as its own stage (device_run.hpp); mapping.enabled maps without one.
-  const bool mapping_enabled = !device && config.get_bool("mapping.enabled", false);
-  if (device) config.get_bool("mapping.enabled", true);  // read: a preset may say so
+  const bool mapping_enabled = !device && get(config, defaulting_to(mapping_enabled_key(), false));
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
   MapSessionOptions map_options = read_map_session_options(config);
-  if (!device) config.reject_unknown_keys();  // a device's stages read theirs once the recording is known
+  config.reject_unknown_keys(run_schema(device ? &*device : nullptr));
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
     spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "
                  "weight: it diverged on 4 of 20 Monte-Carlo seeds of lab-walk-1 (docs/estimator.md, Consistency); "
@@ -259,11 +265,10 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     device_options.drop_when_full = a.realtime;
     device_options.queue_capacity = a.device_queue;
     device_options.figures = a.plot;
-    const bool prediction = config.get_bool("device.realtime_prediction", true);
+    const bool prediction = get(config, kRealtimePrediction);
     device_options.predict_at_arrival = a.realtime && prediction;
     device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,
                                              device_options);
-    config.reject_unknown_keys();
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point arrival) {
       device_run->on_estimate(e, arrival);
     };
@@ -304,7 +309,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   poses.reserve(estimates.size());
   for (const auto& e : estimates)
     if (e.mode != EstimatorMode::kInitializing) poses.push_back({e.pose.t, e.pose.T_W_B});
-  std::ofstream(a.out / "config.yaml") << config.dump();
+  std::ofstream(a.out / "config.yaml") << config.dump(reads.defaults());
 
   const auto& st = driver.estimator().statistics();
   nlohmann::ordered_json j;
@@ -546,6 +551,10 @@ std::string run_recording(const RecordingRunOptions& options) {
   for (const auto& w : converted.report.warnings)
     spdlog::warn("{}: {}{}", w.source, w.message, w.count > 1 ? fmt::format(" (x{})", w.count) : "");
   return run_recording_folder(a);
+}
+
+ConfigSchema recording_run_schema() {
+  return ConfigSchema().add(frontend_rate_key()).add(mapping_enabled_key()).add(kRealtimePrediction);
 }
 
 }  // namespace navaid::experiments

@@ -6,8 +6,10 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
 #include "navaid/experiments/map_session.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/foot_router.hpp"
 #include "navaid/planning/path_guidance.hpp"
 #include "navaid/planning/route_subgoals.hpp"
@@ -20,14 +22,16 @@ using mapping::Vec2;
 
 using planning::GeoPoint;
 
+const ConfigKey<std::string> kPlanner{"planning.planner", std::string("direction-astar"), {"direction-astar", "astar"},
+                                      "route guidance: the local planner toward each sub-route's subgoal"};
+
 class RouteGuidanceStage final : public GuidanceStage {
  public:
   explicit RouteGuidanceStage(const GuidanceStageContext& c)
       : sub_(planning::sub_route_config(c.config)),
         guidance_(planning::read_path_guidance_config(c.config),
-                  planning::make_local_planner(c.config.get_string("planning.planner", std::string("direction-astar"), {"direction-astar", "astar"}),
-                                               c.config)),
-        planner_name_(c.config.get_string("planning.planner", std::string("direction-astar"), {"direction-astar", "astar"})) {
+                  planning::make_local_planner(get(c.config, kPlanner), c.config)),
+        planner_name_(get(c.config, kPlanner)) {
     const planning::FootRouteConfig route_config = planning::foot_route_config(c.config);
     if (!c.recording.origin)
       throw Error(c.recording_dir.string() + ": no geodetic origin; device " + c.spec.name +
@@ -117,6 +121,16 @@ class RouteGuidanceStage final : public GuidanceStage {
 };
 
 }  // namespace
+
+ConfigSchema route_guidance_stage_schema() {
+  return ConfigSchema()
+      .add(planning::sub_route_config_schema())
+      .add(planning::path_guidance_config_schema())
+      .add(kPlanner)
+      .add(planning::local_planner_schema("direction-astar"))
+      .add(planning::local_planner_schema("astar"))
+      .add(planning::foot_route_config_schema());
+}
 
 std::unique_ptr<GuidanceStage> make_route_guidance_stage(const GuidanceStageContext& context) {
   return std::make_unique<RouteGuidanceStage>(context);

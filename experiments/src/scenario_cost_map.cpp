@@ -3,17 +3,29 @@
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/occupancy_cost_map.hpp"
 #include "navaid/simulation/occupancy_export.hpp"
 #include "navaid/simulation/scenario.hpp"
 
 namespace navaid::experiments {
 
+namespace {
+const ConfigKey<double> kResolution{"planning.map.resolution_m", 0.1, {0.01, 2.0},
+                                    "cell size of a scenario's planner map [m]"};
+const ConfigKey<std::vector<double>> kBand{"planning.map.band_m", std::vector<double>{0.2, 2.0}, 2, {-10.0, 10.0},
+                                           "[low, high] height band above the ground sliced into a scenario's "
+                                           "planner map [m]"};
+}  // namespace
+
+ConfigSchema scenario_cost_map_schema() {
+  return ConfigSchema().add(kResolution).add(kBand).add(planning::occupancy_cost_config_schema());
+}
+
 ScenarioCostMap scenario_cost_map(const std::string& scenario, const Config& config) {
-  const double resolution = config.get_double("planning.map.resolution_m", 0.1, {0.01, 2.0});
-  const std::vector<double> band = config.has("planning.map.band_m")
-                                       ? config.get_doubles("planning.map.band_m", 2, {-10.0, 10.0})
-                                       : std::vector<double>{0.2, 2.0};
+  const double resolution = get(config, kResolution);
+  const std::vector<double> band = get(config, kBand);
   if (!(band[1] > band[0])) throw ConfigError("", "planning.map.band_m", "needs low < high");
   simulation::ScenarioOptions options;
   options.people = options.vehicles = false;

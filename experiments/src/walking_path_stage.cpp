@@ -10,8 +10,10 @@
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/guidance_stage.hpp"
 #include "navaid/experiments/map_session.hpp"
+#include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/smart_cane_guidance.hpp"
 
 namespace navaid::experiments {
@@ -112,6 +114,8 @@ class WalkingPathStage final : public GuidanceStage {
 };
 
 }  // namespace
+
+ConfigSchema walking_path_stage_schema() { return planning::smart_cane_guidance_config_schema(); }
 
 std::unique_ptr<GuidanceStage> make_walking_path_stage(const GuidanceStageContext& context) {
   return std::make_unique<WalkingPathStage>(context);

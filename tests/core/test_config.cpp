@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include "navaid/core/config.hpp"
+#include "navaid/core/config_reads.hpp"
+#include "navaid/core/config_schema.hpp"
 #include "navaid/core/errors.hpp"
 #include "test_support.hpp"
 
@@ -84,14 +86,15 @@ TEST(Config, MalformedOverrides) {
   EXPECT_NE(config_error([&] { c.apply_override("window.size=3"); }).find("holds a value"), std::string::npos);
 }
 
-TEST(Config, UnknownKeysAreRejectedAfterReading) {
+TEST(Config, UnknownKeysAreRejectedByTheDeclaredKeys) {
   const Config c = Config::parse(kYaml, "walk.yaml", {"sensor.imu.rtae=3"});
-  c.get_double("sensor.imu.rate", {1, 1000});
-  c.get_doubles("sensor.imu.noise", 3, {0, 1});
-  c.get_string("sensor.camera.model");
-  c.get_bool("sensor.camera.enabled");
-  c.get_int("window", 1, 20);
-  const auto msg = config_error([&] { c.reject_unknown_keys(); });
+  navaid::ConfigSchema schema;
+  schema.add(navaid::ConfigKey<double>{"sensor.imu.rate", std::nullopt, {1, 1000}, "rate"})
+      .add(navaid::ConfigKey<std::vector<double>>{"sensor.imu.noise", std::nullopt, 3, {0, 1}, "noise"})
+      .add(navaid::ConfigKey<std::string>{"sensor.camera.model", std::nullopt, {}, "model"})
+      .add(navaid::ConfigKey<bool>{"sensor.camera.enabled", std::nullopt, "enabled"})
+      .add(navaid::ConfigKey<int>{"window", std::nullopt, 1, 20, "window"});
+  const auto msg = config_error([&] { c.reject_unknown_keys(schema); });
   EXPECT_NE(msg.find("sensor.imu.rtae"), std::string::npos) << msg;
   EXPECT_NE(msg.find("--set"), std::string::npos) << msg;
 }
@@ -137,14 +140,21 @@ TEST(Config, ReadingNeverChangesTheGivenKeys) {
 }
 
 TEST(Config, DumpHoldsTheDefaultsThatWereReadSoARunFolderHasTheWholeConfiguration) {
+  using navaid::ConfigKey;
   const Config c = Config::parse(kYaml, "walk.yaml");
-  EXPECT_DOUBLE_EQ(c.get_double("sensor.gps.rate", 0.3, {0, 10}), 0.3);
-  EXPECT_EQ(c.get_int("sensor.gps.satellites", 12, 0, 40), 12);
-  EXPECT_FALSE(c.get_bool("estimator.gps.enabled", false));
-  EXPECT_EQ(c.get_string("estimator.mode", "rgbd-vio", {}), "rgbd-vio");
-  EXPECT_EQ(c.get_strings("layers", {"map", "plan"}), (std::vector<std::string>{"map", "plan"}));
-  EXPECT_DOUBLE_EQ(c.get_double("sensor.gps.rate", 0.7, {0, 10}), 0.7);  // a second default is not recorded
-  const std::string dumped = c.dump();
+  const Config other = c;  // reads of another Config are not this one's
+  const navaid::ConfigReads reads(c);
+  EXPECT_DOUBLE_EQ(get(c, ConfigKey<double>{"sensor.gps.rate", 0.3, {0, 10}, ""}), 0.3);
+  EXPECT_EQ(get(c, ConfigKey<int>{"sensor.gps.satellites", 12, 0, 40, ""}), 12);
+  EXPECT_FALSE(get(c, ConfigKey<bool>{"estimator.gps.enabled", false, ""}));
+  EXPECT_EQ(get(c, ConfigKey<std::string>{"estimator.mode", std::string("rgbd-vio"), {}, ""}), "rgbd-vio");
+  EXPECT_EQ(get(c, ConfigKey<std::vector<std::string>>{"layers", {"map", "plan"}, ""}),
+            (std::vector<std::string>{"map", "plan"}));
+  EXPECT_DOUBLE_EQ(get(c, ConfigKey<double>{"sensor.gps.rate", 0.7, {0, 10}, ""}), 0.7);  // a second default is not recorded
+  EXPECT_EQ(get(other, ConfigKey<int>{"sensor.gps.week", 3, 0, 9, ""}), 3);
+  const std::string dumped = c.dump(reads.defaults());
+  EXPECT_EQ(dumped.find("week"), std::string::npos) << dumped;
+  EXPECT_EQ(c.dump(), Config::parse(kYaml, "walk.yaml").dump());  // reading changed nothing
   EXPECT_NE(dumped.find("rate: 0.3\n"), std::string::npos) << dumped;  // shortest round-trip text
   const Config d = Config::parse(dumped, "dump.yaml");
   EXPECT_DOUBLE_EQ(d.get_double("sensor.gps.rate", {0, 10}), 0.3);

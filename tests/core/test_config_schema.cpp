@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "navaid/core/config.hpp"
+#include "navaid/core/config_reads.hpp"
 #include "navaid/core/config_schema.hpp"
 #include "navaid/core/errors.hpp"
 #include "test_support.hpp"
@@ -142,6 +143,36 @@ TEST(ConfigSchema, DumpWritesGivenKeysAndTheSchemasDefaults) {
   EXPECT_EQ(dumped.get_strings("ignored", {}), (std::vector<std::string>{"sky"}));
   EXPECT_FALSE(dumped.has("sensor.imu.bias"));  // no default to write
   EXPECT_NO_THROW(dumped.reject_unknown_keys(schema()));
+}
+
+TEST(ConfigSchema, ReadsAreNotedPerThreadAndPerConfigAndChangeNothing) {
+  const Config shared = Config::parse("sensor: {imu: {rate: 400}}\n", "walk.yaml");
+  const std::string before = shared.dump();
+  ConfigSchema first, second;
+  std::thread a([&] {
+    const navaid::ConfigReads reads(shared);
+    get(shared, kWindow);
+    get(shared, kRate);  // given: no default handed out
+    first = reads.defaults();
+  });
+  std::thread b([&] {
+    const navaid::ConfigReads reads(shared);
+    get(shared, kModel);
+    get(Config(), kSeed);  // another Config: not this one's
+    second = reads.defaults();
+  });
+  a.join();
+  b.join();
+  ASSERT_EQ(first.keys().size(), 1u);
+  EXPECT_EQ(first.keys().front().name, "window");
+  ASSERT_EQ(second.keys().size(), 1u);
+  EXPECT_EQ(second.keys().front().name, "sensor.camera.model");
+  EXPECT_EQ(shared.dump(), before);  // reading changed nothing
+  const Config dumped = Config::parse(shared.dump(first), "dump.yaml");
+  EXPECT_EQ(dumped.get_int("window", 0, 100), 10);
+  EXPECT_DOUBLE_EQ(dumped.get_double("sensor.imu.rate", {0, 1000}), 400.0);
+  EXPECT_FALSE(dumped.has("sensor.camera.model"));
+  EXPECT_THROW(shared.reject_unknown_keys(), std::logic_error);  // the schema says which keys are known
 }
 
 // Many threads read (and copy) one loaded Config at once. Before the getters took a lock, the

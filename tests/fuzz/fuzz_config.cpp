@@ -5,9 +5,12 @@
 
 #include "fuzz_support.hpp"
 #include "navaid/core/config.hpp"
+#include "navaid/estimation/config_schema.hpp"
 #include "navaid/estimation/estimator_config.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
+#include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/device_preset.hpp"
+#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/mapper.hpp"
 #include "navaid/mapping/segmentation_link.hpp"
 
@@ -33,7 +36,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (config.has("device.name")) (void)experiments::read_device_spec(config);
     (void)mapping::read_mapper_config(config);
     (void)mapping::read_segmentation_link_config(config);
-    config.reject_unknown_keys();
+    config.reject_unknown_keys(estimation::config_schema()
+                                   .add(experiments::device_spec_schema())
+                                   .add(mapping::mapper_config_schema())
+                                   .add(mapping::segmentation_link_config_schema()));
   });
   return 0;
 }

@@ -9,6 +9,7 @@
 
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/interaction/config_schema.hpp"
 #include "navaid/interaction/speech_synthesizer.hpp"
 
 namespace {
@@ -217,7 +218,7 @@ TEST(SpeechConfigTest, ReadsKeysAndDefaults) {
   EXPECT_EQ(s.rate_wpm, 220);
   EXPECT_EQ(s.pitch, 30);
   EXPECT_TRUE(s.text_only);
-  EXPECT_NO_THROW(c.reject_unknown_keys());
+  EXPECT_NO_THROW(c.reject_unknown_keys(speech_config_schema()));
 
   EXPECT_EQ(read_speech_config(Config::parse("interaction: {speech: {voice: en+f3}}")).voice, "en+f3");
   EXPECT_THROW(read_speech_config(Config::parse("interaction: {speech: {rate_wpm: 500}}")), ConfigError);

@@ -15,6 +15,7 @@
 #include "navaid/core/camera.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/pcd_cloud.hpp"
 #include "navaid/simulation/ray_caster.hpp"
 #include "navaid/simulation/rgbd_renderer.hpp"
@@ -314,7 +315,7 @@ TEST(ObstaclePipeline, ConfigKeysAreReadAndRangeChecked) {
   EXPECT_NEAR(o.ransac_eps_angle_rad, 20.0 * kDeg, 1e-12);
   EXPECT_EQ(o.scan_bins(), 87u);
   EXPECT_DOUBLE_EQ(o.above_head_height_m, 2.0);
-  c.reject_unknown_keys();
+  c.reject_unknown_keys(obstacle_pipeline_config_schema());
   const std::string msg = testing::error_message<ConfigError>(
       [] { read_obstacle_pipeline_config(Config::parse("{}", "<t>", {"mapping.obstacles.ransac.distance_threshold=-1"})); });
   EXPECT_NE(msg.find("mapping.obstacles.ransac.distance_threshold"), std::string::npos) << msg;

@@ -15,6 +15,7 @@
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/runtime/estimator_driver.hpp"
 #include "navaid/runtime/estimator_pipeline.hpp"
+#include "navaid/simulation/config_schema.hpp"
 #include "navaid/simulation/simulator.hpp"
 #include "test_support.hpp"
 
@@ -34,7 +35,7 @@ const navaid::io::Recording& walk() {
     const auto scenario = navaid::simulation::make_scenario(navaid::simulation::read_scenario_name(c),
                                                             navaid::simulation::read_scenario_options(c));
     const auto sim = navaid::simulation::read_simulation_config(c, scenario);
-    c.reject_unknown_keys();
+    c.reject_unknown_keys(navaid::simulation::simulation_config_schema());
     navaid::simulation::SimulateOptions options;
     options.threads = 1;
     navaid::simulation::simulate(scenario, sim, dir.path(), options);

@@ -5,7 +5,7 @@
 // range raises ConfigError naming the file (or the --set override it came from), the dotted key
 // and the allowed range. Overrides "a.b.c=value" replace or create keys; the value is parsed as
 // YAML, so "--set imu.rate=400", "--set name=head" and "--set list=[1,2,3]" all work.
-// After reading, reject_unknown_keys() catches typos: keys nobody asked for are an error.
+// reject_unknown_keys(schema) catches typos against the declared keys; reading changes nothing.
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -63,17 +63,17 @@ class Config {
   /// Child keys of a map (empty when the key is absent).
   std::vector<std::string> child_keys(std::string_view key) const;
 
-  /// Throws ConfigError naming the first leaf key that no get_* call has read.
+  /// Obsolete (reads are not recorded): throws std::logic_error. Pass the command's schema.
   void reject_unknown_keys() const;
-  /// Throws ConfigError naming the first leaf key that `schema` does not declare (same message).
+  /// Throws ConfigError naming the first leaf key that `schema` (the command's keys) lacks.
   void reject_unknown_keys(const ConfigSchema& schema) const;
 
   /// Every leaf key of the loaded tree (dotted, in file order).
   std::vector<std::string> leaf_keys() const;
 
-  /// The whole configuration as YAML (after overrides), for run folders.
+  /// The given keys as YAML (after overrides).
   std::string dump() const;
-  /// The given keys plus the defaults of every key in `schema` that is absent.
+  /// Plus each absent key of `schema` with its default (ConfigReads::defaults(): the run's).
   std::string dump(const ConfigSchema& schema) const;
 
  private:
