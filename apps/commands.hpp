@@ -25,5 +25,6 @@ void add_cues_command(CLI::App& app);
 void add_listen_command(CLI::App& app);
 void add_device_sim_command(CLI::App& app);
 void add_trial_command(CLI::App& app);
+void add_config_command(CLI::App& app);
 
 }  // namespace navaid::cli

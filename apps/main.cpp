@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   navaid::cli::add_listen_command(app);
   navaid::cli::add_device_sim_command(app);
   navaid::cli::add_trial_command(app);
+  navaid::cli::add_config_command(app);
   app.parse_complete_callback([&] {
     spdlog::set_level(verbosity >= 2 ? spdlog::level::debug
                       : verbosity == 1 ? spdlog::level::info
