@@ -6,8 +6,10 @@
 #include <optional>
 
 #include "navaid/core/config.hpp"
+#include "navaid/estimation/config_schema.hpp"
 #include "navaid/io/event_stream.hpp"
 #include "navaid/io/navaid_recording.hpp"
+#include "navaid/simulation/config_schema.hpp"
 #include "navaid/simulation/simulator.hpp"
 #include "test_support.hpp"
 
@@ -22,7 +24,7 @@ io::Recording simulate_recording(const std::string& scratch_name, const std::vec
   const Config c = Config::parse("{}", "<test>", all);
   const auto scenario = simulation::make_scenario(simulation::read_scenario_name(c), simulation::read_scenario_options(c));
   const auto sim = simulation::read_simulation_config(c, scenario);
-  c.reject_unknown_keys();
+  c.reject_unknown_keys(simulation::simulation_config_schema());
   simulation::SimulateOptions options;
   options.threads = 1;
   simulation::simulate(scenario, sim, dir.path(), options);
@@ -32,7 +34,7 @@ io::Recording simulate_recording(const std::string& scratch_name, const std::vec
 EstimatorRun run_estimator(const io::Recording& rec, const std::vector<std::string>& overrides, bool flush) {
   const Config c = Config::parse("{}", "<test>", overrides);
   SlidingWindowEstimator estimator(rec.calibration, read_estimator_config(c), {}, rec.origin);
-  c.reject_unknown_keys();
+  c.reject_unknown_keys(estimator_config_schema());
   EstimatorRun r;
   io::SensorEventStream stream(rec);
   while (auto e = stream.next())

@@ -10,6 +10,7 @@
 #include "navaid/core/camera.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
+#include "navaid/estimation/config_schema.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
 #include "navaid/simulation/sensor_rig.hpp"
 #include "navaid/simulation/walker_trajectory.hpp"
@@ -74,7 +75,7 @@ TEST(FrontendKeys, DefaultsOverridesAndErrorsNameTheKey) {
   EXPECT_DOUBLE_EQ(f.fb_threshold_px, 0.5);
   EXPECT_FALSE(f.imu_prediction);
   EXPECT_EQ(f.depth_patch_size, 5);
-  c.reject_unknown_keys();  // every key above was read
+  c.reject_unknown_keys(frontend_config_schema());  // every key above is a front-end key
 
   const auto bad = expect_throw<ConfigError>(
       [] { read_frontend_config(Config::parse("{}", "<defaults>", {"frontend.klt_window_px=4"})); });

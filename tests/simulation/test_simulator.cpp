@@ -10,6 +10,7 @@
 #include "navaid/core/camera.hpp"
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/navaid_recording.hpp"
+#include "navaid/simulation/config_schema.hpp"
 #include "test_support.hpp"
 
 namespace navaid::simulation {
@@ -53,7 +54,7 @@ struct SimulatedCorridor {
     all.insert(all.end(), overrides.begin(), overrides.end());
     const Config c = Config::parse("{}", "<test>", all);
     config = read_simulation_config(c, scenario);
-    c.reject_unknown_keys();
+    c.reject_unknown_keys(simulation_config_schema());
     SimulateOptions options;
     options.threads = 2;
     simulate(scenario, config, dir.path(), options);

@@ -1,8 +1,8 @@
 #pragma once
 // Everything `navaid simulate` needs, read from a navaid::Config (YAML file + --set overrides).
 // The keys, their defaults and ranges are documented in docs/simulate.md; every key read here is
-// validated (ConfigError naming the key), and unknown keys are left for the caller's
-// Config::reject_unknown_keys().
+// validated (ConfigError naming the key); the caller rejects unknown keys with
+// config.reject_unknown_keys(simulation_config_schema()) (navaid/simulation/config_schema.hpp).
 #include <cstdint>
 #include <string>
 
