@@ -19,7 +19,6 @@ namespace navaid::cli {
 using experiments::Progress;
 using experiments::MapSession;
 using experiments::MapSessionOptions;
-using experiments::read_obstacle_options;
 using experiments::recording_start;
 using experiments::groundtruth_poses;
 
@@ -45,8 +44,7 @@ void run_map(const MapArgs& a) {
                                               : Config::load(a.config_file, a.overrides);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
   MapSessionOptions options{a.snapshot_every_s, a.png_every_s, !a.no_quality, 0};
-  read_obstacle_options(config, options);
-  options.network = mapping::read_segmentation_link_config(config);
+  runtime::MappingStageOptions stage_options = runtime::read_mapping_stage_options(config);
   config.reject_unknown_keys();
 
   const io::Recording recording = read_camera_recording(a.recording, "RGB-D frames");
@@ -70,9 +68,10 @@ void run_map(const MapArgs& a) {
   }
 
   options.frames_total = frames.size();
-  options.network_start = recording_start(recording);
+  stage_options.network_start = recording_start(recording);
   if (a.poses == "run") options.align_to = groundtruth_poses(recording);
-  MapSession session(mapper_config, camera, a.recording, a.out, options);
+  runtime::MappingStage stage(mapper_config, camera, stage_options);
+  MapSession session(stage, a.recording, a.out, options);
   Progress progress("mapping", frames.size());
   for (std::size_t i = 0; i < frames.size(); ++i) {
     progress.update(i);
@@ -81,7 +80,7 @@ void run_map(const MapArgs& a) {
       continue;
     }
     try {
-      session.add(frames[i], *poses[i]);
+      session.record(frames[i], *poses[i], stage.add(frames[i], *poses[i]));
     } catch (const IoError&) {
       throw;  // names its own file (an image)
     } catch (const Error& e) {

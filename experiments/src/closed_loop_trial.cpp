@@ -16,7 +16,7 @@
 #include "navaid/estimation/sliding_window_estimator.hpp"
 #include "navaid/runtime/estimator_driver.hpp"
 #include "navaid/experiments/cue_perception.hpp"
-#include "navaid/experiments/device_preset.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/experimenter.hpp"
 #include "navaid/experiments/reach_protocol.hpp"
@@ -84,6 +84,9 @@ std::vector<simulation::Vec2> route_turns(const std::vector<simulation::Vec2>& p
 
 }  // namespace
 
+using runtime::DeviceSpec;
+using runtime::GuidanceKind;
+
 TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const auto wall0 = Clock::now();
   Config config = spec.config;
@@ -149,7 +152,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       const simulation::Vec2 rel = Eigen::Rotation2Dd(-start_heading) * (goal - start);
       config.apply_override(fmt::format("device.goal_start_frame_m=[{:.6f},{:.6f}]", rel.x(), rel.y()));
     }
-    device = read_device_spec(config);
+    device = runtime::read_device_spec(config);
     if ((device->guidance == GuidanceKind::kHandTarget) != reach_task)
       throw ConfigError(config.origin("trial.task"), "trial.task",
                         fmt::format("device {} ({} guidance) does not do the {} task: reach goes with a hand-target "
@@ -215,11 +218,12 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     estimation::read_frontend_config(config);  // a preset's front-end keys: the trial feeds features
     driver.emplace(estimation::SlidingWindowEstimator(
         recording.calibration, estimation::read_estimator_config(config), sim.camera.name, recording.origin));
-    MapSessionOptions map_options = read_map_session_options(config);
+    MapSessionOptions map_options;
     map_options.quality = false;  // a trial scores the walk, not the map
     config.get_bool("mapping.enabled", true);
     DeviceRunOptions options;
-    options.threaded = false;  // deterministic, and the person reacts to this frame's cues
+    options.device.mapping = runtime::read_mapping_stage_options(config);
+    options.device.threaded = false;  // deterministic, and the person reacts to this frame's cues
     options.figures = false;
     options.cue_sink = [&felt, &trial_clock_s](const interaction::CueEvent& ev) {
       const double t_s = ns_to_seconds(ev.t - simulation::kSimulationEpoch);
@@ -429,8 +433,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       }
       estimator_s += seconds_since(tp);
       tp = Clock::now();
-      if (frame) device_run->add_frame(std::move(*frame));
-      for (const StateEstimate& e : estimates) device_run->on_estimate(e, Clock::now());
+      if (frame) device_run->device().add_frame(std::move(*frame));
+      for (const StateEstimate& e : estimates) device_run->device().on_estimate(e, Clock::now());
       if (!estimates.empty()) last_estimate = estimates.back();
       device_s += seconds_since(tp);
     }

@@ -1,7 +1,7 @@
 // navaid run's work, for every caller (the command, the trials, the reproductions, the tests): the
 // sliding-window estimator on a recording, from its feature observations or, when it has none,
 // from its images through the front end, replayed on one thread or in real time
-// (estimator_pipeline.hpp); with a device (device.* keys, device_preset.hpp) every estimate also
+// (estimator_pipeline.hpp); with a device (device.* keys, runtime/device_spec.hpp) every estimate also
 // goes through mapping, the device's guidance and its cues (device_run.hpp). Writes the run
 // folder (docs/estimator.md "navaid run", docs/full-device-runs.md).
 #include "navaid/experiments/recording_run.hpp"
@@ -34,6 +34,7 @@
 #include "navaid/experiments/run_output_stream.hpp"
 #include "navaid/experiments/run_topview.hpp"
 
+#include "navaid/experiments/device_requirements.hpp"
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/figure_script.hpp"
 
@@ -98,7 +99,7 @@ double frontend_ms(const FrameTiming& r) { return r.frontend ? r.frontend->track
 
 /// stages.csv: every stage's cost per frame (the device's stages empty where it skipped a frame).
 void write_stage_csv(const std::filesystem::path& file, const std::vector<FrameTiming>& frames,
-                     const std::map<Timestamp, DeviceRun::StageTimes>& device) {
+                     const std::map<Timestamp, runtime::StageTimes>& device) {
   std::ofstream out(file);
   if (!out) throw IoError(file.string(), "cannot write");
   out << "t_ns,frontend_ms,estimator_ms,mapping_ms,planning_ms,interaction_ms\n";
@@ -138,13 +139,14 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
   const double camera_rate_hz = config.get_double("frontend.rate_hz", 0.0, {0.0, 1000.0});
-  const std::optional<DeviceSpec> device =
-      config.has("device.name") ? std::optional<DeviceSpec>(read_device_spec(config)) : std::nullopt;
+  const std::optional<runtime::DeviceSpec> device =
+      config.has("device.name") ? std::optional<runtime::DeviceSpec>(runtime::read_device_spec(config)) : std::nullopt;
   // A device maps as its own stage (device_run.hpp); mapping.enabled maps without one.
   const bool mapping_enabled = !device && config.get_bool("mapping.enabled", false);
   if (device) config.get_bool("mapping.enabled", true);  // read: a preset may say so
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
-  MapSessionOptions map_options = read_map_session_options(config);
+  MapSessionOptions map_options;
+  runtime::MappingStageOptions stage_options = runtime::read_mapping_stage_options(config);
   if (!device) config.reject_unknown_keys();  // a device's stages read theirs once the recording is known
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
     spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "
@@ -231,6 +233,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
                     camera_frames);
   pipeline_input.on_progress = [&progress](std::size_t frames) { progress.update(frames); };
   // mapping.enabled: the map is built as the estimates come (map/, the same folder navaid map writes).
+  std::optional<runtime::MappingStage> map_stage;
   std::optional<MapSession> map_session;
   std::map<Timestamp, const RgbdFrame*> frame_at;
   if (mapping_enabled) {
@@ -241,11 +244,13 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
     map_options.frames_total = camera_frames;
     map_options.align_to = groundtruth_poses(recording);
-    map_session.emplace(mapper_config, *cam, a.recording, a.out / "map", map_options);
+    map_stage.emplace(mapper_config, *cam, stage_options);
+    map_session.emplace(*map_stage, a.recording, a.out / "map", map_options);
     for (const auto& f : recording.frames)
       if (f.camera == camera) frame_at[f.t] = &f;
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point) {
-      if (const auto it = frame_at.find(e.t); it != frame_at.end()) map_session->add(*it->second, e);
+      if (const auto it = frame_at.find(e.t); it != frame_at.end())
+        map_session->record(*it->second, e, map_stage->add(*it->second, e));
     };
   }
   std::unique_ptr<DeviceRun> device_run;
@@ -254,22 +259,23 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
     map_options.frames_total = camera_frames;
     map_options.align_to = groundtruth_poses(recording);
-    map_options.network_start = recording_start(recording);
+    stage_options.network_start = recording_start(recording);
     DeviceRunOptions device_options;
-    device_options.drop_when_full = a.realtime;
-    device_options.queue_capacity = a.device_queue;
+    device_options.device.drop_when_full = a.realtime;
+    device_options.device.queue_capacity = a.device_queue;
+    device_options.device.mapping = stage_options;
     device_options.figures = a.plot;
     const bool prediction = config.get_bool("device.realtime_prediction", true);
-    device_options.predict_at_arrival = a.realtime && prediction;
+    device_options.device.predict_at_arrival = a.realtime && prediction;
     device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,
                                              device_options);
     config.reject_unknown_keys();
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point arrival) {
-      device_run->on_estimate(e, arrival);
+      device_run->device().on_estimate(e, arrival);
     };
-    if (device_options.predict_at_arrival)
+    if (device_options.device.predict_at_arrival)
       pipeline_input.on_frame_arrival = [&](Timestamp t, std::chrono::steady_clock::time_point arrival) {
-        device_run->on_frame_arrival(t, arrival);
+        device_run->device().on_frame_arrival(t, arrival);
       };
   }
   runtime::PipelineResult result;
@@ -488,11 +494,11 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   if (device_run) {
     nlohmann::ordered_json d = device_run->finish();
     j["device"] = {{"name", device->name},
-                   {"guidance", std::string(to_string(device->guidance))},
+                   {"guidance", std::string(runtime::to_string(device->guidance))},
                    {"actuator", std::string(interaction::to_string(device->actuator))},
                    {"speech", device->speech},
                    {"map_every", device->map_every}};
-    write_stage_csv(a.out / "stages.csv", stream.timings(), device_run->stage_times());
+    write_stage_csv(a.out / "stages.csv", stream.timings(), device_run->device().stage_times());
     nlohmann::ordered_json stages = stage_summary(stream.timings());
     for (auto& [name, value] : d["stages"].items()) stages[name] = value;
     j["stages"] = stages;

@@ -4,10 +4,10 @@
 // attitude only, no position, so there is nothing to wait for once a scan exists.
 #include <array>
 
-#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
 #include "navaid/planning/byu_cost_functions.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 namespace {
 
 class ObstacleRumbleStage final : public GuidanceStage {
@@ -51,4 +51,4 @@ std::unique_ptr<GuidanceStage> make_obstacle_rumble_stage(const GuidanceStageCon
   return std::make_unique<ObstacleRumbleStage>(context);
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime

@@ -1,6 +1,6 @@
-#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 
 std::unique_ptr<GuidanceStage> make_guidance_stage(const GuidanceStageContext& context) {
   switch (context.spec.guidance) {
@@ -22,4 +22,4 @@ planning::GuidanceCommand waiting_command(Timestamp t, planning::GuidanceReason 
   return c;
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime
