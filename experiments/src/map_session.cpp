@@ -260,6 +260,7 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   if (quality_) j["quality"] = quality_json(quality_->result(), *scenario_);
   if (quality_global_) j["quality_global"] = quality_json(quality_global_->result(), *scenario_);
   std::ofstream(out_ / "summary.json") << j.dump(2) << "\n";
+  for (auto* csv : {&timing_, &obstacle_csv_}) csv->flush();  // complete while the session lives on
   return j;
 }
 
