@@ -1,6 +1,6 @@
 // A device app on navaid's runtime: a recording's sensor events are fed to the estimator and the
 // device at the pace they were recorded, and the cues and speech print as the device makes them.
-//   device_app RECORDING DEVICE [--speed S] [--set key=value ...]
+//   device_app RECORDING DEVICE [--speed S] [--set key=value ...]   (S: x real time, 0 = as fast as it goes)
 // DEVICE is a preset (smart-cane, augmented-cane, w-roma, elabrador). The mission comes from the
 // configuration: device.goal_start_frame_m (smart-cane), device.tag_id (w-roma), device.route.osm
 // and device.route.to (elabrador, starting at the first GPS fix).
@@ -64,6 +64,7 @@ int run(int argc, char** argv) {
     else if (flag == "--speed") pace.speed = std::stod(argv[i + 1]);
     else throw UsageError("unknown option " + flag);
   }
+  runtime::validate(pace);  // --speed 0: as fast as it goes, no frame dropped
   const io::Recording recording = io::read_input(argv[1]);
   if (recording.calibration.cameras.empty() || recording.imu.empty())
     throw UsageError(std::string(argv[1]) + ": a device needs a camera and an IMU");
@@ -111,7 +112,8 @@ int run(int argc, char** argv) {
       device.add_imu(recording.imu[imu_next]);
     device.on_frame_arrival(t, arrival);
   };
-  std::printf("%s on %s at %.1fx real time\n", spec.name.c_str(), argv[1], pace.speed);
+  std::printf("%s on %s, %s\n", spec.name.c_str(), argv[1],
+              pace.speed > 0 ? (std::to_string(pace.speed) + "x real time").c_str() : "as fast as it goes");
   runtime::realtime_pipeline(input, pace);
   const runtime::DeviceResult result = device.finish();
   if (result.error) std::rethrow_exception(result.error);
