@@ -129,11 +129,11 @@ void run(const HandGuideArgs& a) {
   const ConfigReads reads(config);
   planning::AprilTagDetectorConfig detector_config = planning::read_apriltag_detector_config(config);
   const planning::HandGuidanceConfig guidance_config = planning::read_hand_guidance_config(config);
-  const std::vector<double> t_H_C = get(config, experiments::hand_camera_translation_key());
+  const std::vector<double> t_H_C = get(config, runtime::hand_camera_translation_key());
   config.reject_unknown_keys(ConfigSchema()
                                  .add(planning::apriltag_detector_config_schema())
                                  .add(planning::hand_guidance_config_schema())
-                                 .add(experiments::hand_camera_translation_key()));
+                                 .add(runtime::hand_camera_translation_key()));
   const SE3 T_H_C(Quat::Identity(), Vec3(t_H_C[0], t_H_C[1], t_H_C[2]));
 
   const io::Recording recording = read_camera_recording(a.recording, "camera images");

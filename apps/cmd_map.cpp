@@ -12,6 +12,7 @@
 #include "navaid/core/config_reads.hpp"
 #include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/map_session.hpp"
+#include "navaid/runtime/config_schema.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/experiments/progress.hpp"
@@ -22,7 +23,6 @@ namespace navaid::cli {
 using experiments::Progress;
 using experiments::MapSession;
 using experiments::MapSessionOptions;
-using experiments::read_obstacle_options;
 using experiments::recording_start;
 using experiments::groundtruth_poses;
 
@@ -49,9 +49,8 @@ void run_map(const MapArgs& a) {
   const ConfigReads reads(config);
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
   MapSessionOptions options{a.snapshot_every_s, a.png_every_s, !a.no_quality, 0};
-  read_obstacle_options(config, options);
-  options.network = mapping::read_segmentation_link_config(config);
-  config.reject_unknown_keys(mapping::mapper_config_schema().add(experiments::map_session_options_schema()));
+  runtime::MappingStageOptions stage_options = runtime::read_mapping_stage_options(config);
+  config.reject_unknown_keys(mapping::mapper_config_schema().add(runtime::mapping_stage_options_schema()));
 
   const io::Recording recording = read_camera_recording(a.recording, "RGB-D frames");
   if (recording.calibration.cameras.empty()) throw Error(a.recording.string() + ": no camera in the calibration");
@@ -74,9 +73,10 @@ void run_map(const MapArgs& a) {
   }
 
   options.frames_total = frames.size();
-  options.network_start = recording_start(recording);
+  stage_options.network_start = recording_start(recording);
   if (a.poses == "run") options.align_to = groundtruth_poses(recording);
-  MapSession session(mapper_config, camera, a.recording, a.out, options);
+  runtime::MappingStage stage(mapper_config, camera, stage_options);
+  MapSession session(stage, a.recording, a.out, options);
   Progress progress("mapping", frames.size());
   for (std::size_t i = 0; i < frames.size(); ++i) {
     progress.update(i);
@@ -85,7 +85,7 @@ void run_map(const MapArgs& a) {
       continue;
     }
     try {
-      session.add(frames[i], *poses[i]);
+      session.record(frames[i], *poses[i], stage.add(frames[i], *poses[i]));
     } catch (const IoError&) {
       throw;  // names its own file (an image)
     } catch (const Error& e) {

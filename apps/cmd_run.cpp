@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "navaid/core/config.hpp"
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/device_preset.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "navaid/experiments/recording_run.hpp"
 
 namespace navaid::cli {
@@ -36,7 +36,7 @@ void run(const RunArgs& a) {
   experiments::RecordingRunOptions o;
   o.recording = a.recording;
   o.out = a.out;
-  const std::filesystem::path file = a.device.empty() ? a.config_file : experiments::device_preset_file(a.device);
+  const std::filesystem::path file = a.device.empty() ? a.config_file : runtime::device_preset_file(a.device);
   o.config = file.empty() ? Config::parse("{}", "<defaults>", a.overrides) : Config::load(file, a.overrides);
   o.realtime = a.realtime;
   o.realtime_options = a.realtime_options;
@@ -59,7 +59,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--config", a->config_file, "YAML configuration (estimator.* and frontend.* keys, docs/estimator.md)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--device", a->device,
-                  "Full-device run with a preset of experiments/devices (elabrador, smart-cane, augmented-cane, "
+                  "Full-device run with a preset of runtime/devices (elabrador, smart-cane, augmented-cane, "
                   "w-roma): mapping, guidance, cues, speech, report.html (docs/full-device-runs.md)");
   cmd->add_option("--device-queue", a->device_queue,
                   "With --device --realtime: estimates that may wait for the device thread (the oldest is dropped)")

@@ -18,8 +18,8 @@
 #include "navaid/estimation/sliding_window_estimator.hpp"
 #include "navaid/runtime/estimator_driver.hpp"
 #include "navaid/experiments/cue_perception.hpp"
-#include "navaid/experiments/device_preset.hpp"
-#include "navaid/experiments/device_run.hpp"
+#include "navaid/runtime/device_spec.hpp"
+#include "navaid/experiments/trial_device.hpp"
 #include "navaid/experiments/experimenter.hpp"
 #include "navaid/experiments/reach_protocol.hpp"
 #include "navaid/mapping/pose_uncertainty.hpp"
@@ -85,6 +85,40 @@ std::vector<simulation::Vec2> route_turns(const std::vector<simulation::Vec2>& p
   return way;
 }
 
+/// What the reaching person did (reach_protocol.hpp): search time, closest approach, grasps, cues.
+nlohmann::ordered_json reach_summary(const ReachProtocol& reach, bool guided, double end_s) {
+  const simulation::ReachCounts& k = reach.counts();
+  return {{"guided", guided},
+          {"search_start_s", reach.search_start_s() ? nlohmann::ordered_json(*reach.search_start_s()) : nullptr},
+          {"search_time_s", reach.search_time_s(end_s)},
+          {"closest_m", reach.closest_m()},
+          {"failed_grasps", reach.failed_grasps()},
+          {"hand_cues", k.hand_cues}, {"ignored", k.ignored}, {"walks", k.walks}, {"turns", k.turns},
+          {"grasps", k.grasps}, {"detours", k.detours}, {"spiral_rings", k.rings}};
+}
+
+/// Contacts with the world: the body's and the cane's, and by body part.
+nlohmann::ordered_json contacts_summary(const TrialResult& r) {
+  nlohmann::ordered_json parts = {{"legs", 0}, {"torso", 0}, {"head", 0}, {"cane", 0}};
+  for (const auto& c : r.contacts) parts[std::string(to_string(c.part))] = parts[std::string(to_string(c.part))].get<int>() + 1;
+  return {{"body", r.body_contacts}, {"cane", r.cane_contacts}, {"by_part", parts}};
+}
+
+/// Every instruction that pointed the person into an obstacle (trial.guidance_check_m ahead).
+nlohmann::ordered_json into_obstacle_summary(const std::vector<GuidanceIntoObstacle>& events) {
+  nlohmann::ordered_json into = nlohmann::ordered_json::array();
+  for (const auto& g : events)
+    into.push_back({{"t_s", g.t_s}, {"instruction", g.instruction}, {"direction_deg", g.direction_deg},
+                    {"primitive", g.primitive}, {"semantic", g.semantic}});
+  return into;
+}
+
+nlohmann::ordered_json user_counts_summary(const simulation::UserCounts& u, double preferred_speed_mps) {
+  return {{"instructions", u.instructions}, {"ignored", u.ignored}, {"corrections", u.corrections},
+          {"stops", u.stops}, {"cane_avoidances", u.cane_avoidances}, {"bumps", u.bumps},
+          {"preferred_speed_mps", preferred_speed_mps}};
+}
+
 }  // namespace
 
 namespace {
@@ -141,6 +175,9 @@ ConfigSchema trial_schema() {
       .add(kWalkOffSpeed);
 }
 
+using runtime::DeviceSpec;
+using runtime::GuidanceKind;
+
 TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const auto wall0 = Clock::now();
   Config config = spec.config;
@@ -150,15 +187,15 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   const ConfigReads reads(config);  // config.yaml: the given keys and the defaults the trial used
   const bool with_device = config.has("device.name");
   // W-ROMA's task, reaching for an object (reach_protocol.hpp): a hand-target device's by default.
-  const bool hand_device = with_device && config.has(device_guidance_key().name) &&
-                           get(config, device_guidance_key()) == to_string(GuidanceKind::kHandTarget);
+  const bool hand_device = with_device && config.has(runtime::device_guidance_key().name) &&
+                           get(config, runtime::device_guidance_key()) == to_string(GuidanceKind::kHandTarget);
   const bool reach_task = get(config, defaulting_to(kTask, std::string(hand_device ? "reach" : "walk"))) == "reach";
   if (reach_task && !config.has("simulation.targets")) config.apply_override("simulation.targets=true");
   // A person searching with the hand points it level (the hand mount's 10 deg pitch is a walk's):
   // the hand unit's aligned cone (5 deg far away) is then reachable.
   if (reach_task && !config.has("mount_pitch_deg")) config.apply_override("mount_pitch_deg=0");
   if (with_device && !config.has("mount")) {
-    const auto actuator = interaction::device_kind_from_string(get(config, device_actuator_key()));
+    const auto actuator = interaction::device_kind_from_string(get(config, runtime::device_actuator_key()));
     if (actuator) config.apply_override("mount=" + device_mount(*actuator));
   }
   const simulation::ScenarioOptions scenario_options = simulation::read_scenario_options(config);
@@ -206,7 +243,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       const simulation::Vec2 rel = Eigen::Rotation2Dd(-start_heading) * (goal - start);
       config.apply_override(fmt::format("device.goal_start_frame_m=[{:.6f},{:.6f}]", rel.x(), rel.y()));
     }
-    device = read_device_spec(config);
+    device = runtime::read_device_spec(config);
     if ((device->guidance == GuidanceKind::kHandTarget) != reach_task)
       throw ConfigError(config.origin("trial.task"), "trial.task",
                         fmt::format("device {} ({} guidance) does not do the {} task: reach goes with a hand-target "
@@ -255,32 +292,21 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   // The object's tag for the hand-target stage, as a simulated recording has it.
   if (reach_task) simulation::write_scenario_targets(scenario, out / io::kTargetsCsv);
 
-  // The device: the estimator on the rig's IMU and feature observations, the full-device pipeline.
-  std::optional<runtime::EstimatorDriver> driver;  // the rig's features: no image front end
-  std::unique_ptr<DeviceRun> device_run;
-  io::Recording recording;
-  recording.format = "navaid";
-  recording.origin = scenario.origin;
-  recording.calibration.cameras = {sim.camera};
-  recording.calibration.imu = sim.imu;
-  recording.calibration.gps_lever_arm_B = sim.mount.gps_lever_arm_B;
-  if (sim.gps_enabled) recording.calibration.gps_rate_hz = sim.gps.rate_hz;
-  if (sim.mag_enabled) recording.calibration.mag_rate_hz = sim.mag_rate_hz;
+  // The device: the rig's sensors, the estimator on its IMU and feature observations, the
+  // full-device pipeline.
   std::deque<simulation::Instruction> felt;
   double trial_clock_s = 0;
+  std::optional<TrialDevice> carried;
   if (device) {
-    driver.emplace(estimation::SlidingWindowEstimator(
-        recording.calibration, estimation::read_estimator_config(config), sim.camera.name, recording.origin));
-    MapSessionOptions map_options = read_map_session_options(config);
-    map_options.quality = false;  // a trial scores the walk, not the map
-    DeviceRunOptions options;
-    options.threaded = false;  // deterministic, and the person reacts to this frame's cues
-    options.figures = false;
+    TrialDeviceOptions options;
+    options.render_camera = render_camera;
+    options.camera_rate_hz = camera_rate;
+    options.save_recording = save_recording;
     options.cue_sink = [&felt, &trial_clock_s](const interaction::CueEvent& ev) {
       const double t_s = ns_to_seconds(ev.t - simulation::kSimulationEpoch);
       if (auto i = perceive_cue(ev, std::max(t_s, trial_clock_s))) felt.push_back(*i);
     };
-    device_run = std::make_unique<DeviceRun>(*device, config, recording, out, render_camera, out, map_options, options);
+    carried.emplace(*device, config, scenario, sim, nominal, out, options);
   }
   // A device's preset may hold the front end's keys and mapping.enabled: the trial feeds the
   // estimator features and always maps, yet they are its keys.
@@ -321,16 +347,6 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   if (device && device->guidance == GuidanceKind::kRoute)
     user.walk_off(start_heading, get(config, kWalkOffSpeed));
   simulation::ContactMonitor contacts(scenario.world, scenario.ground_z_m, user_model.body, user_model.cane);
-  std::optional<simulation::OnlineSensors> sensors;
-  if (device) sensors.emplace(scenario, sim, nominal, render_camera);
-
-  io::Recording saved;  // trial.save_recording
-  if (save_recording) {
-    saved.format = "navaid";
-    saved.origin = recording.origin;
-    saved.calibration = recording.calibration;
-    saved.calibration.cameras.front().rate_hz = camera_rate;  // the rate the features come at
-  }
   TrialResult r;
   std::ofstream track = open_csv(
       out / "track.csv",
@@ -352,19 +368,13 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     }
   };
 
-  const double imu_rate = sim.imu.rate_hz;
-  const Timestamp imu_dt_ns = seconds_to_ns(1.0 / imu_rate);
-  const Timestamp camera_dt_ns = seconds_to_ns(1.0 / camera_rate);
+  const Timestamp imu_dt_ns = seconds_to_ns(1.0 / sim.imu.rate_hz);
   const Timestamp contact_dt_ns = seconds_to_ns(1.0 / contact_rate);
   const Timestamp begin = -seconds_to_ns(sim.still_time_s);
-  Timestamp next_camera = begin, next_contact = begin, next_track = begin, next_gps = begin, next_mag = begin;
-  const bool uses_gps = device && device->guidance == GuidanceKind::kRoute;
-  std::size_t gps_fixes = 0, mag_samples = 0;
-  std::uint64_t frame_index = 0;
-  double sensor_s = 0, estimator_s = 0, device_s = 0, person_s = 0;
+  Timestamp next_contact = begin, next_track = begin;
+  double person_s = 0;
   double walking_s = 0;
   std::optional<double> walked_off;
-  std::optional<StateEstimate> last_estimate;
   std::optional<simulation::CaneTouch> bump;
   std::optional<double> arrived_at;
   const double dt = ns_to_seconds(imu_dt_ns);
@@ -433,10 +443,10 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       track << fmt::format("{:.3f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}", t_s, body.position().x(), body.position().y(),
                            body.heading() * 180.0 / M_PI, body.speed(), body.veer() * 180.0 / M_PI);
       // What the device believes: its newest estimate, in its own world frame.
-      if (last_estimate)
-        track << fmt::format(",{:.4f},{:.4f},{:.3f},{},{:.4f}", last_estimate->T_W_B.t.x(),
-                             last_estimate->T_W_B.t.y(), planning::body_yaw(last_estimate->T_W_B) * 180.0 / M_PI,
-                             to_string(last_estimate->mode), mapping::pose_uncertainty(*last_estimate).sigma_xy);
+      if (const auto& last = carried ? carried->last_estimate() : std::nullopt)
+        track << fmt::format(",{:.4f},{:.4f},{:.3f},{},{:.4f}", last->T_W_B.t.x(), last->T_W_B.t.y(),
+                             planning::body_yaw(last->T_W_B) * 180.0 / M_PI, to_string(last->mode),
+                             mapping::pose_uncertainty(*last).sigma_xy);
       else
         track << ",,,,,";
       // The hand of a reaching person: its offset from the body and how far it is from the object.
@@ -447,57 +457,7 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
     }
     person_s += seconds_since(tp);
 
-    if (device) {
-      tp = Clock::now();
-      const ImuSample imu = sensors->imu(state, t);
-      if (save_recording) {
-        saved.imu.push_back(imu);
-        saved.groundtruth.push_back({imu.t, state.T_W_B, state.v_W, sensors->imu_model().gyro_bias(),
-                                     sensors->imu_model().accel_bias()});
-      }
-      std::vector<StateEstimate> estimates = driver->process(imu);
-      std::optional<RgbdFrame> frame;
-      FeatureFrame features;
-      const bool camera_tick = t >= next_camera;
-      if (camera_tick) {
-        next_camera += camera_dt_ns;
-        features = sensors->features(state.T_W_B, t);
-        if (save_recording) saved.features.push_back(features);
-        frame = sensors->rgbd(state.T_W_B, t, frame_index++);
-      }
-      sensor_s += seconds_since(tp);
-      tp = Clock::now();
-      // GNSS and the magnetometer at their rates, for the devices that read them (a route); before
-      // the frame of the same moment, which the estimator attaches the fix to.
-      if (uses_gps && t >= next_gps) {
-        next_gps += seconds_to_ns(1.0 / sim.gps.rate_hz);
-        if (auto fix = sensors->gps(state.T_W_B, t)) {
-          ++gps_fixes;
-          if (save_recording) saved.gps.push_back(*fix);
-          auto more = driver->process(SensorEvent{*fix});
-          estimates.insert(estimates.end(), more.begin(), more.end());
-        }
-      }
-      if (uses_gps && t >= next_mag) {
-        next_mag += seconds_to_ns(1.0 / sim.mag_rate_hz);
-        if (auto m = sensors->mag(state.T_W_B, t)) {
-          ++mag_samples;
-          if (save_recording) saved.mag.push_back(*m);
-          auto more = driver->process(SensorEvent{*m});
-          estimates.insert(estimates.end(), more.begin(), more.end());
-        }
-      }
-      if (camera_tick) {
-        auto more = driver->process(features);
-        estimates.insert(estimates.end(), more.begin(), more.end());
-      }
-      estimator_s += seconds_since(tp);
-      tp = Clock::now();
-      if (frame) device_run->add_frame(std::move(*frame));
-      for (const StateEstimate& e : estimates) device_run->on_estimate(e, Clock::now());
-      if (!estimates.empty()) last_estimate = estimates.back();
-      device_s += seconds_since(tp);
-    }
+    if (carried) carried->step(state, t);
 
     const double to_goal = (body.position() - goal).norm();
     if (reach) {
@@ -526,17 +486,8 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
       break;
     }
   }
-  if (save_recording) {
-    saved.landmarks = sensors->landmarks();
-    io::write_navaid_recording(saved, out / "recording");
-  }
   const double end_s = ns_to_seconds(next_track) - 0.1;
-  nlohmann::ordered_json device_summary;
-  if (device_run) {
-    const auto tp = Clock::now();
-    device_summary = device_run->finish();
-    device_s += seconds_since(tp);
-  }
+  const nlohmann::ordered_json device_summary = carried ? carried->finish() : nlohmann::ordered_json();
 
   r.duration_s = reach ? reach->search_time_s(end_s) : walked_off ? std::max(0.0, end_s - *walked_off) : 0.0;
   r.path_length_m = body.distance_walked();
@@ -562,37 +513,18 @@ TrialResult run_trial(const TrialSpec& spec, const fs::path& out) {
   j["mean_speed_mps"] = r.mean_speed_mps;
   j["goal_distance_m"] = r.goal_distance_m;
   if (needs_facing) j["faced_landmark"] = r.faced_landmark;
-  if (reach) {
-    const simulation::ReachCounts& k = reach->counts();
-    j["reach"] = {{"guided", with_device},
-                  {"search_start_s", reach->search_start_s() ? nlohmann::ordered_json(*reach->search_start_s()) : nullptr},
-                  {"search_time_s", reach->search_time_s(end_s)},
-                  {"closest_m", reach->closest_m()},
-                  {"failed_grasps", reach->failed_grasps()},
-                  {"hand_cues", k.hand_cues}, {"ignored", k.ignored}, {"walks", k.walks}, {"turns", k.turns},
-                  {"grasps", k.grasps}, {"detours", k.detours}, {"spiral_rings", k.rings}};
-  }
+  if (reach) j["reach"] = reach_summary(*reach, with_device, end_s);
   j["experimenter_corrections"] = r.experimenter_corrections;
   j["max_off_route_m"] = r.max_off_route_m;
-  nlohmann::ordered_json parts = {{"legs", 0}, {"torso", 0}, {"head", 0}, {"cane", 0}};
-  for (const auto& c : r.contacts) parts[std::string(to_string(c.part))] = parts[std::string(to_string(c.part))].get<int>() + 1;
-  j["contacts"] = {{"body", r.body_contacts}, {"cane", r.cane_contacts}, {"by_part", parts}};
-  nlohmann::ordered_json into = nlohmann::ordered_json::array();
-  for (const auto& g : r.into_obstacle)
-    into.push_back({{"t_s", g.t_s}, {"instruction", g.instruction}, {"direction_deg", g.direction_deg},
-                    {"primitive", g.primitive}, {"semantic", g.semantic}});
-  j["guidance_into_obstacle"] = into;
-  j["user_counts"] = {{"instructions", r.user.instructions}, {"ignored", r.user.ignored},
-                      {"corrections", r.user.corrections}, {"stops", r.user.stops},
-                      {"cane_avoidances", r.user.cane_avoidances}, {"bumps", r.user.bumps}, {"preferred_speed_mps", user.preferred_speed()}};
-  j["time"] = {{"wall_s", r.wall_s}, {"person_and_contacts_s", person_s}, {"sensors_s", sensor_s},
-               {"estimator_s", estimator_s}, {"device_s", device_s}, {"frames", frame_index},
-               {"gps_fixes", gps_fixes}, {"mag_samples", mag_samples}};
-  if (device) {
-    const estimation::EstimatorStatistics& es = driver->estimator().statistics();
-    j["estimator"] = {{"failures", es.failures}, {"last_failure", es.last_failure}, {"restarts", es.restarts},
-                      {"map_frame_resets", es.map_frame_resets}, {"gps_registrations", es.gps_registrations},
-                      {"covariance_failures", es.covariance_failures}};
+  j["contacts"] = contacts_summary(r);
+  j["guidance_into_obstacle"] = into_obstacle_summary(r.into_obstacle);
+  j["user_counts"] = user_counts_summary(r.user, user.preferred_speed());
+  const TrialDeviceCounts n = carried ? carried->counts() : TrialDeviceCounts{};
+  j["time"] = {{"wall_s", r.wall_s}, {"person_and_contacts_s", person_s}, {"sensors_s", n.sensor_s},
+               {"estimator_s", n.estimator_s}, {"device_s", n.device_s}, {"frames", n.frames},
+               {"gps_fixes", n.gps_fixes}, {"mag_samples", n.mag_samples}};
+  if (carried) {
+    j["estimator"] = carried->estimator_summary();
     j["device_run"] = device_summary;
   }
   r.summary = j;

@@ -2,7 +2,7 @@
 #include "navaid/experiments/config_schema.hpp"
 
 #include "navaid/estimation/config_schema.hpp"
-#include "navaid/experiments/device_preset.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "navaid/interaction/config_schema.hpp"
 #include "navaid/mapping/config_schema.hpp"
 
@@ -22,40 +22,17 @@ const ConfigKey<double>& frontend_rate_key() {
   return key;
 }
 
-const ConfigKey<std::vector<double>>& hand_camera_translation_key() {
-  static const ConfigKey<std::vector<double>> key{"planning.hand.t_H_C_m", std::vector<double>{0.0, 0.0, 0.0}, 3,
-                                                  {-2.0, 2.0}, "the camera's position in the hand unit's frame [m]"};
-  return key;
-}
-
-ConfigSchema device_run_schema(const DeviceSpec& device) {
-  ConfigSchema s = interaction::cue_generator_config_schema();
-  s.add(interaction::cue_policy_config_schema());
-  s.add(interaction::device_adapter_schema(device.actuator));
-  s.add(interaction::speech_config_schema());
-  s.add(mapping::mapper_config_schema());
-  switch (device.guidance) {
-    case GuidanceKind::kRoute: return s.add(route_guidance_stage_schema());
-    case GuidanceKind::kWalkingPath: return s.add(walking_path_stage_schema());
-    case GuidanceKind::kObstacleRumble: return s.add(obstacle_rumble_stage_schema());
-    case GuidanceKind::kHandTarget: return s.add(hand_target_stage_schema());
-  }
-  return s;
-}
-
-ConfigSchema run_schema(const DeviceSpec* device) {
+ConfigSchema run_schema(const runtime::DeviceSpec* device) {
   ConfigSchema s = estimation::config_schema();
-  s.add(recording_run_schema()).add(mapping::mapper_config_schema()).add(map_session_options_schema());
-  if (device != nullptr) s.add(device_spec_schema()).add(device_run_schema(*device));
+  s.add(recording_run_schema()).add(mapping::mapper_config_schema()).add(runtime::mapping_stage_options_schema());
+  if (device != nullptr) s.add(runtime::device_spec_schema()).add(runtime::device_schema(*device));
   return s;
 }
 
 ConfigSchema config_schema() {
   return ConfigSchema()
-      .add(device_spec_schema())
+      .add(runtime::config_schema())
       .add(recording_run_schema())
-      .add(map_session_options_schema())
-      .add(guidance_stages_schema())
       .add(trial_schema())
       .add(experimenter_config_schema())
       .add(reach_protocol_config_schema())

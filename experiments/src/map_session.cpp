@@ -8,9 +8,6 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/evaluation/start_alignment.hpp"
-#include "navaid/experiments/config_schema.hpp"
-#include "navaid/io/image_io.hpp"
-#include "navaid/mapping/config_schema.hpp"
 #include "navaid/mapping/map_png.hpp"
 #include "navaid/simulation/simulation_config.hpp"
 #include "navaid/runtime/estimator_pipeline.hpp"
@@ -90,33 +87,6 @@ std::vector<io::StampedPose> groundtruth_poses(const io::Recording& recording) {
   return gt;
 }
 
-const ConfigKey<bool> kObstaclesEnabled{"mapping.obstacles.enabled", false,
-                                        "run the BYU obstacle pipeline (mapping.obstacles.*) on every mapped frame"};
-const ConfigKey<double> kObstaclePriorHeight{"mapping.obstacles.prior_camera_height_m",
-                                             MapSessionOptions{}.obstacle_prior_camera_height_m, {0.05, 5.0},
-                                             "the obstacle pipeline's prior camera height above the ground [m]"};
-
-void read_obstacle_options(const Config& config, MapSessionOptions& options) {
-  if (!get(config, kObstaclesEnabled)) return;
-  options.obstacles = mapping::read_obstacle_pipeline_config(config);
-  options.obstacle_prior_camera_height_m = get(config, kObstaclePriorHeight);
-}
-
-ConfigSchema map_session_options_schema() {
-  return ConfigSchema()
-      .add(kObstaclesEnabled)
-      .add(kObstaclePriorHeight)
-      .add(mapping::obstacle_pipeline_config_schema())
-      .add(mapping::segmentation_link_config_schema());
-}
-
-MapSessionOptions read_map_session_options(const Config& config) {
-  MapSessionOptions options;
-  read_obstacle_options(config, options);
-  options.network = mapping::read_segmentation_link_config(config);
-  return options;
-}
-
 Timestamp recording_start(const io::Recording& recording) {
   std::optional<Timestamp> start;
   const auto earliest = [&start](Timestamp t) { start = start ? std::min(*start, t) : t; };
@@ -127,30 +97,27 @@ Timestamp recording_start(const io::Recording& recording) {
   return start.value_or(0);
 }
 
-MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibration& camera,
-                       const std::filesystem::path& recording_dir, const std::filesystem::path& out,
-                       const MapSessionOptions& options)
-    : config_(config),
-      camera_(camera),
+MapSession::MapSession(const runtime::MappingStage& stage, const std::filesystem::path& recording_dir,
+                       const std::filesystem::path& out, const MapSessionOptions& options)
+    : stage_(stage),
       out_(out),
       options_(options),
-      mapper_(config, camera),
-      top_view_(config.map.resolution_m),
+      top_view_(stage.config().map.resolution_m),
       scenario_(options.quality ? recording_scenario(recording_dir) : std::nullopt) {
   if (!(options.snapshot_every_s > 0)) throw UsageError("the map snapshot interval must be positive");
+  const double resolution_m = stage.config().map.resolution_m;
   if (scenario_) {
-    quality_ = std::make_unique<evaluation::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+    quality_ = std::make_unique<evaluation::MapQualityAccumulator>(*scenario_, resolution_m);
     if (!options.align_to.empty())
-      quality_global_ = std::make_unique<evaluation::MapQualityAccumulator>(*scenario_, config.map.resolution_m);
+      quality_global_ = std::make_unique<evaluation::MapQualityAccumulator>(*scenario_, resolution_m);
   }
   std::filesystem::create_directories(out_);
   timing_.open(out_ / "timing.csv");
   if (!timing_) throw IoError((out_ / "timing.csv").string(), "cannot write");
-  if (options.obstacles) {
-    obstacles_.emplace(*options.obstacles);
+  if (const auto& obstacles = stage.options().obstacles) {
     obstacle_csv_.open(out_ / "obstacle_scan.csv");
     if (!obstacle_csv_) throw IoError((out_ / "obstacle_scan.csv").string(), "cannot write");
-    const auto& o = *options.obstacles;
+    const auto& o = *obstacles;
     obstacle_csv_ << "t_ns,ground,ransac,obstacle_points,drop_off_points";
     // Nearest obstacle (r_) and nearest drop-off (d_) per bearing bin.
     for (const char* kind : {"r", "d"})
@@ -159,8 +126,7 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
                                      (o.scan_min_bearing_rad + static_cast<double>(b) * o.scan_bin_width_rad) * 180.0 / M_PI);
     obstacle_csv_ << "\n";
   }
-  if (options.network) {
-    link_.emplace(*options.network, options.network_start);
+  if (stage.link()) {
     network_csv_.open(out_ / "network.csv");
     if (!network_csv_) throw IoError((out_ / "network.csv").string(), "cannot write");
     network_csv_ << "t_s,event\n";  // seconds after the recording start, as mapping.network.outages
@@ -171,39 +137,21 @@ MapSession::MapSession(const mapping::MapperConfig& config, const CameraCalibrat
 
 MapSession::~MapSession() = default;
 
-void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
+void MapSession::record(const RgbdFrame& frame, const StateEstimate& estimate, const runtime::MappedFrame& mapped) {
   ++frames_seen_;
-  RgbdFrame frame = unloaded;
-  frame.intensity_path.clear();  // the map needs depth, labels and confidence only
-  bool labels_dropped = false;
-  if (link_) {
-    // The server's labels do not reach the edge: this frame maps geometry only.
-    if (!link_->labels_available(frame.t) && (!frame.labels_path.empty() || frame.labels)) {
-      frame.labels_path.clear();
-      frame.confidence_path.clear();
-      frame.labels.reset();
-      frame.label_confidence.reset();
-      labels_dropped = true;
-    }
-    for (const auto& c : link_->take_changes()) {
-      const double t_s = static_cast<double>(c.t - options_.network_start) * 1e-9;
-      spdlog::info("segmentation server {} at {:.3f} s", mapping::network_change_name(c.kind), t_s);
-      network_csv_ << fmt::format("{:.3f},{}\n", t_s, mapping::network_change_name(c.kind));
-      network_events_.emplace_back(interaction::SystemEvent{
-          c.t, c.kind == mapping::NetworkChangeKind::kLost ? interaction::SystemEventKind::kNetworkLost
-                                                           : interaction::SystemEventKind::kNetworkRestored,
-          {}});
-    }
+  for (const auto& c : mapped.network_changes) {
+    network_csv_ << fmt::format("{:.3f},{}\n", static_cast<double>(c.t - stage_.options().network_start) * 1e-9,
+                                mapping::network_change_name(c.kind));
+    network_events_.push_back(runtime::network_event(c));
   }
-  io::load_frame_images(frame);
-  const auto r = mapper_.process(frame, estimate);
-  if (labels_dropped && r.outcome == mapping::FrameOutcome::kMapped) ++geometry_only_;
-  if (obstacles_ && !frame.depth.empty()) scan_obstacles(frame, estimate);
+  const mapping::MapperFrameResult& r = mapped.result;
+  if (mapped.scan) write_obstacle_row(*mapped.scan);
   timing_ << fmt::format("{},{},{},{:.4f},{:.3f},{:.4f},{:.3f},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", frame.t,
                          frame.index, outcome_name(r.outcome), r.uncertainty.sigma_xy,
                          r.uncertainty.sigma_yaw * 180.0 / M_PI, r.gated.sigma_xy, r.gated.sigma_yaw * 180.0 / M_PI,
                          r.points, r.insert.occupied_voxels, r.insert.free_voxels, r.cloud_ms, r.insert_ms, r.layers_ms,
                          r.esdf_ms);
+  const mapping::Mapper& mapper = stage_.mapper();
   if (r.outcome == mapping::FrameOutcome::kMapped) {
     if (quality_global_ && !aligned_) {
       quality_global_->set_map_to_truth(evaluation::first_state_transform(estimate, options_.align_to));
@@ -214,7 +162,7 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
     layers_ms_.push_back(r.layers_ms);
     esdf_ms_.push_back(r.esdf_ms);
     total_ms_.push_back(r.cloud_ms + r.insert_ms + r.layers_ms + r.esdf_ms);
-    if (options_.png_every_s > 0 && mapper_.local_maps() &&
+    if (options_.png_every_s > 0 && mapper.local_maps() &&
         (!last_png_ || frame.t - *last_png_ >= static_cast<Timestamp>(options_.png_every_s * 1e9))) {
       last_png_ = frame.t;
       write_layer_pngs(out_ / "snapshots", fmt::format("{:04d}-", pngs_++));
@@ -222,36 +170,27 @@ void MapSession::add(const RgbdFrame& unloaded, const StateEstimate& estimate) {
     top_view_.add_path_point(estimate.T_W_B.t);
     if (!last_snapshot_ || frame.t - *last_snapshot_ >= static_cast<Timestamp>(options_.snapshot_every_s * 1e9)) {
       last_snapshot_ = frame.t;
-      top_view_.add_voxels(mapper_.map().occupied_voxels(), estimate.T_W_B.t.z() + kTopViewAboveBodyM);
+      top_view_.add_voxels(mapper.map().occupied_voxels(), estimate.T_W_B.t.z() + kTopViewAboveBodyM);
       if (quality_) {
         if (!options_.align_to.empty())
           quality_->set_map_to_truth(evaluation::first_state_transform(estimate, options_.align_to));
-        quality_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
+        quality_->add_snapshot(mapper.map(), estimate.T_W_B.t);
       }
-      if (quality_global_) quality_global_->add_snapshot(mapper_.map(), estimate.T_W_B.t);
+      if (quality_global_) quality_global_->add_snapshot(mapper.map(), estimate.T_W_B.t);
     }
   }
   const std::size_t seen = frames_seen_ + no_pose_;
   while (options_.frames_total > 0 && next_quarter_ <= 4 && 4 * seen >= next_quarter_ * options_.frames_total) {
     const auto [now, peak] = rss_mib();
     memory_.push_back({{"route_fraction", 0.25 * static_cast<double>(next_quarter_)}, {"rss_mib", now},
-                       {"peak_rss_mib", peak}, {"map_leaves", mapper_.map().leaf_count()},
-                       {"map_bytes", mapper_.map().memory_bytes()}});
+                       {"peak_rss_mib", peak}, {"map_leaves", mapper.map().leaf_count()},
+                       {"map_bytes", mapper.map().memory_bytes()}});
     ++next_quarter_;
   }
 }
 
-void MapSession::scan_obstacles(const RgbdFrame& frame, const StateEstimate& estimate) {
-  // Prior T_U_C: the estimate's attitude without its yaw (U looks where the camera looks), the
-  // camera prior_camera_height_m over the ground; the pipeline refines it from the ground plane.
-  const Mat3 R_W_C = estimate.T_W_B.rotation() * camera_.T_B_C.rotation();
-  const Vec3 forward = R_W_C.col(2);
-  const Mat3 R_W_U = Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Vec3::UnitZ()).toRotationMatrix();
-  const SE3 T_U_C_prior(Mat3(R_W_U.transpose() * R_W_C), Vec3(0, 0, options_.obstacle_prior_camera_height_m));
-  const auto scan = obstacles_->process(mapping::camera_points_from_depth(frame, camera_, options_.obstacle_pixel_stride),
-                                        T_U_C_prior, frame.t);
-  last_scan_ = scan;
-  obstacle_csv_ << fmt::format("{},{},{},{},{}", frame.t, static_cast<int>(scan.counters.ground_source),
+void MapSession::write_obstacle_row(const mapping::ObstacleScan& scan) {
+  obstacle_csv_ << fmt::format("{},{},{},{},{}", scan.t, static_cast<int>(scan.counters.ground_source),
                                scan.counters.ransac_succeeded ? 1 : 0, scan.counters.obstacle_points,
                                scan.counters.drop_off_points);
   for (const auto* ranges : {&scan.ranges, &scan.drop_off_ranges})
@@ -259,15 +198,8 @@ void MapSession::scan_obstacles(const RgbdFrame& frame, const StateEstimate& est
   obstacle_csv_ << "\n";
 }
 
-std::vector<interaction::GuidanceTimelineEntry> MapSession::take_system_events() {
-  std::vector<interaction::GuidanceTimelineEntry> events(network_events_.begin() + static_cast<std::ptrdiff_t>(network_events_taken_),
-                                                         network_events_.end());
-  network_events_taken_ = network_events_.size();
-  return events;
-}
-
 void MapSession::write_layer_pngs(const std::filesystem::path& dir, const std::string& prefix) const {
-  const mapping::LocalMaps* maps = mapper_.local_maps();
+  const mapping::LocalMaps* maps = stage_.mapper().local_maps();
   if (maps == nullptr) return;
   std::filesystem::create_directories(dir);
   mapping::write_height_map_png(dir / (prefix + "height.png"), maps->height);
@@ -278,11 +210,13 @@ void MapSession::write_layer_pngs(const std::filesystem::path& dir, const std::s
 }
 
 nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
-  const auto& n = mapper_.counters();
+  const mapping::Mapper& mapper = stage_.mapper();
+  const mapping::MapperConfig& config = stage_.config();
+  const auto& n = mapper.counters();
   if (n.no_depth > 0) spdlog::warn("{} frames without depth were not mapped", n.no_depth);
   // A device that maps no frame by design (map_every 0) is not warned about.
   if (n.mapped == 0 && n.frames > 0) spdlog::warn("no frame was mapped (timing.csv's outcome column says why)");
-  const mapping::SemanticMap& map = mapper_.map();
+  const mapping::SemanticMap& map = mapper.map();
   map.save(out_ / "map.ot");
   map.write_color_octree(out_ / "map-color.ot");
   map.write_ply(out_ / "map.ply");
@@ -298,21 +232,22 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   j["frames"] = {{"total", frames_seen_ + no_pose_}, {"without_pose", no_pose_}, {"mapped", n.mapped},
                  {"no_depth", n.no_depth}, {"not_localised", n.not_localised}, {"too_uncertain", n.too_uncertain}};
   j["points_inserted"] = n.points;
-  j["map"] = {{"resolution_m", config_.map.resolution_m},
-              {"fusion", config_.map.fusion == mapping::FusionPolicy::kMax ? "max" : "bayes"},
-              {"window_size_m", config_.map.window_size_m},
+  j["map"] = {{"resolution_m", config.map.resolution_m},
+              {"fusion", config.map.fusion == mapping::FusionPolicy::kMax ? "max" : "bayes"},
+              {"window_size_m", config.map.window_size_m},
               {"leaves", map.leaf_count()},
               {"bytes", map.memory_bytes()},
               {"occupied_voxels_in_window", voxels.size()},
               {"labelled_voxels_in_window", labelled}};
-  if (link_) {
+  if (const mapping::SegmentationLink* link = stage_.link()) {
+    const mapping::SegmentationLinkConfig& network = *stage_.options().network;
     network_csv_.flush();
     interaction::write_guidance_timeline_csv(out_ / "system_events.csv", network_events_);
-    j["network"] = {{"outages_configured", options_.network->outages.size()},
-                    {"outages_detected", link_->outages_detected()},
-                    {"frames_geometry_only", geometry_only_},
-                    {"check_period_s", options_.network->check_period_s},
-                    {"timeout_s", options_.network->timeout_s}};
+    j["network"] = {{"outages_configured", network.outages.size()},
+                    {"outages_detected", link->outages_detected()},
+                    {"frames_geometry_only", stage_.frames_geometry_only()},
+                    {"check_period_s", network.check_period_s},
+                    {"timeout_s", network.timeout_s}};
   }
   j["time_per_mapped_frame_ms"] = {{"cloud_median", runtime::percentile(cloud_ms_, 0.5)},
                                    {"insert_median", runtime::percentile(insert_ms_, 0.5)},
@@ -325,6 +260,7 @@ nlohmann::ordered_json MapSession::finish(const nlohmann::ordered_json& extra) {
   if (quality_) j["quality"] = quality_json(quality_->result(), *scenario_);
   if (quality_global_) j["quality_global"] = quality_json(quality_global_->result(), *scenario_);
   std::ofstream(out_ / "summary.json") << j.dump(2) << "\n";
+  for (auto* csv : {&timing_, &obstacle_csv_}) csv->flush();  // complete while the session lives on
   return j;
 }
 

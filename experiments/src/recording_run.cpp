@@ -1,7 +1,7 @@
 // navaid run's work, for every caller (the command, the trials, the reproductions, the tests): the
 // sliding-window estimator on a recording, from its feature observations or, when it has none,
 // from its images through the front end, replayed on one thread or in real time
-// (estimator_pipeline.hpp); with a device (device.* keys, device_preset.hpp) every estimate also
+// (estimator_pipeline.hpp); with a device (device.* keys, runtime/device_spec.hpp) every estimate also
 // goes through mapping, the device's guidance and its cues (device_run.hpp). Writes the run
 // folder (docs/estimator.md "navaid run", docs/full-device-runs.md).
 #include "navaid/experiments/recording_run.hpp"
@@ -36,6 +36,7 @@
 
 #include "navaid/core/config_reads.hpp"
 #include "navaid/experiments/config_schema.hpp"
+#include "navaid/experiments/device_requirements.hpp"
 #include "navaid/experiments/device_run.hpp"
 #include "navaid/experiments/figure_script.hpp"
 
@@ -100,7 +101,7 @@ double frontend_ms(const FrameTiming& r) { return r.frontend ? r.frontend->track
 
 /// stages.csv: every stage's cost per frame (the device's stages empty where it skipped a frame).
 void write_stage_csv(const std::filesystem::path& file, const std::vector<FrameTiming>& frames,
-                     const std::map<Timestamp, DeviceRun::StageTimes>& device) {
+                     const std::map<Timestamp, runtime::StageTimes>& device) {
   std::ofstream out(file);
   if (!out) throw IoError(file.string(), "cannot write");
   out << "t_ns,frontend_ms,estimator_ms,mapping_ms,planning_ms,interaction_ms\n";
@@ -133,6 +134,269 @@ double stage_total_s(const nlohmann::ordered_json& stages) {
   return total;
 }
 
+/// The estimator's statistics: keyframes, solves, initialization, failures, the calibration it
+/// estimated, residual diagnostics.
+void add_estimator_summary(nlohmann::ordered_json& j, const estimation::SlidingWindowEstimator& estimator,
+                           const estimation::EstimatorConfig& est_config, const io::Recording& recording) {
+  const auto& st = estimator.statistics();
+  j["keyframes"] = st.keyframes;
+  j["solves"] = st.solves;
+  j["solver_iterations"] = st.solver_iterations;
+  j["solves_at_iteration_cap"] = st.solves_at_iteration_cap;
+  j["marginalizations"] = st.marginalizations;
+  j["marginalization_failures"] = st.marginalization_failures;
+  j["covariance_failures"] = st.covariance_failures;
+  j["initialization"] = {{"method", estimation::to_string(est_config.init_method)},
+                         {"attempts", st.initialization_attempts},
+                         {"failures", st.initialization_failures},
+                         {"last_failure", st.last_initialization_failure},
+                         {"still_gyro_bias", st.still_gyro_bias_initializations}};
+  j["zero_velocity_frames"] = st.zero_velocity_frames;
+  j["frames_out_of_time_order"] = st.frames_out_of_time_order;
+  if (est_config.use_mag) j["mag_disturbed_states"] = st.mag_disturbed;
+  if (st.failures > 0)
+    spdlog::warn("{} implausible solve(s): {} window restart(s) in the same map frame, {} re-initialization(s) in a "
+                 "new map frame (last: {})",
+                 st.failures, st.restarts, st.map_frame_resets, st.last_failure);
+  if (st.map_frame_resets > 0)
+    spdlog::warn("the map frame W was reset: the ATE aligns the whole run at once and so also measures the jump");
+  j["failures"] = {{"detection", est_config.failure_detection},
+                   {"count", st.failures},
+                   {"restarts", st.restarts},
+                   {"map_frame_resets", st.map_frame_resets},
+                   {"last", st.last_failure}};
+  if (st.initialized_at_s >= 0 && !recording.imu.empty())
+    j["initialization"]["time_s"] = st.initialized_at_s - ns_to_seconds(recording.imu.front().t);
+  if (est_config.estimate_time_offset) j["camera_time_offset_s"] = estimator.camera_time_offset_s();
+  if (est_config.estimate_extrinsic) {
+    const SE3 T = estimator.camera_extrinsic();
+    j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},
+                                   {"q_wxyz", {T.q.w(), T.q.x(), T.q.y(), T.q.z()}}};
+  }
+  if (est_config.residual_diagnostics) {
+    nlohmann::ordered_json res = nlohmann::ordered_json::object();
+    for (const auto& [type, r] : st.residuals)
+      res[type] = {{"factors", r.factors},
+                   {"rows", r.rows},
+                   {"chi2_per_row", r.rows ? r.squared_sum / static_cast<double>(r.rows) : 0.0},
+                   {"fraction_beyond_3_sigma_rms",
+                    r.factors ? static_cast<double>(r.beyond_3_sigma_rms) / static_cast<double>(r.factors) : 0.0}};
+    j["residuals"] = res;
+  }
+}
+
+/// The fraction of frames in each estimator mode.
+nlohmann::ordered_json mode_fractions(const std::vector<evaluation::RunEstimate>& estimates) {
+  std::map<std::string, std::size_t> modes;
+  for (const auto& e : estimates) ++modes[std::string(to_string(e.mode))];
+  nlohmann::ordered_json fractions = nlohmann::ordered_json::object();
+  for (auto m : {EstimatorMode::kInitializing, EstimatorMode::kRgbdVio, EstimatorMode::kVio, EstimatorMode::kImuOnly,
+                 EstimatorMode::kLost}) {
+    const std::string name(to_string(m));
+    fractions[name] = estimates.empty() ? 0.0 : static_cast<double>(modes[name]) / static_cast<double>(estimates.size());
+  }
+  return fractions;
+}
+
+/// Per-frame cost: the whole frame, the estimator's share and, with images, the front end's and
+/// the image decoding's.
+void add_frame_times(nlohmann::ordered_json& j, const std::vector<FrameTiming>& timings,
+                     const runtime::EstimatorDriver& driver, bool imu_prediction) {
+  std::vector<double> frame_ms, estimator_ms;
+  frame_ms.reserve(timings.size());
+  estimator_ms.reserve(timings.size());
+  for (const auto& r : timings) {
+    frame_ms.push_back(r.ms);
+    estimator_ms.push_back(r.estimator_ms);
+  }
+  j["time_per_frame_ms"] = {{"median", runtime::percentile(frame_ms, 0.5)}, {"p99", runtime::percentile(frame_ms, 0.99)},
+                            {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())},
+                            {"estimator_median", runtime::percentile(estimator_ms, 0.5)},
+                            {"estimator_p99", runtime::percentile(estimator_ms, 0.99)}};
+  if (driver.image_input()) {
+    std::vector<double> track_ms, load_ms, live_ms;
+    for (const auto& r : timings)
+      if (r.frontend) {
+        track_ms.push_back(r.frontend->track_ms);
+        load_ms.push_back(r.frontend->load_ms);
+        live_ms.push_back(r.ms - r.frontend->load_ms);
+      }
+    auto& t = j["time_per_frame_ms"];
+    // What a camera handing over pixels would cost: the frame without decoding its PNGs.
+    t["without_image_load_median"] = runtime::percentile(live_ms, 0.5);
+    t["without_image_load_p99"] = runtime::percentile(live_ms, 0.99);
+    t["frontend_median"] = runtime::percentile(track_ms, 0.5);
+    t["frontend_p99"] = runtime::percentile(track_ms, 0.99);
+    t["image_load_median"] = runtime::percentile(load_ms, 0.5);
+    t["image_load_p99"] = runtime::percentile(load_ms, 0.99);
+    j["frontend"] = {{"frames_tracked", driver.frontend_source().frames_tracked()}, {"imu_prediction", imu_prediction}};
+  }
+}
+
+/// How far the run is from the ground truth: 4-DOF ATE and NEES in the first state's frame. Returns
+/// the ATE (for the top view's title) and the console's words.
+std::pair<std::optional<AteSummary>, std::string> add_truth_comparison(nlohmann::ordered_json& j,
+                                                                        const std::vector<io::StampedPose>& poses,
+                                                                        const std::vector<evaluation::RunEstimate>& estimates,
+                                                                        const std::vector<io::StampedPose>& gt) {
+  std::string ate_text = "no ground truth";
+  const auto ate = ate_4dof(poses, gt);
+  if (ate) {
+    j["ate"] = {{"alignment", "posyaw (4-DOF: yaw + translation)"},
+                {"rmse_m", ate->rmse_m},
+                {"path_length_m", ate->path_length_m},
+                {"percent_of_path", ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0},
+                {"poses", ate->poses}};
+    ate_text = fmt::format("ATE {:.3f} m over {:.1f} m ({:.2f} %)", ate->rmse_m, ate->path_length_m,
+                           ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0);
+  }
+  {
+    // Consistency: NEES in the frame of the estimator's first state (the one its covariance grows
+    // from); averaged over this run's frames (correlated in time: indicative; average the values
+    // of independent seeds, e.g. with navaid ablate, for the chi-square test).
+    const auto aligned = evaluation::align_to_first_state(estimates, gt);
+    if (!aligned.empty()) {
+      const auto nees = evaluation::first_state_nees(aligned, gt);
+      j["nees"] = {{"frame", "first state (4-DOF: yaw + translation at the first estimate)"},
+                   {"position_mean", nees.position_summary.average},
+                   {"orientation_mean", nees.orientation_summary.average},
+                   {"position_fraction_within_95", nees.position_summary.fraction_inside},
+                   {"orientation_fraction_within_95", nees.orientation_summary.fraction_inside},
+                   {"poses", aligned.size()}};
+      ate_text += fmt::format("; mean NEES position {:.2f}, orientation {:.2f} (3 if consistent)",
+                              nees.position_summary.average, nees.orientation_summary.average);
+    }
+  }
+  return {ate, ate_text};
+}
+
+/// The registration to GPS (use_gps): the registered frames' error in ENU against the ground
+/// truth, beside what registering the true path to the fixes allows.
+nlohmann::ordered_json gps_comparison(const std::vector<evaluation::RunEstimate>& estimates,
+                                      const std::vector<io::StampedPose>& gt, const io::Recording& recording,
+                                      const estimation::EstimatorConfig& est_config, std::size_t gps_outliers) {
+  // The simulator's ground truth lives in ENU at the recording's origin (T_ENU_W = identity).
+  std::vector<io::StampedPose> enu;
+  for (const auto& e : estimates)
+    if (e.T_ENU_W && e.mode != EstimatorMode::kInitializing) enu.push_back({e.pose.t, *e.T_ENU_W * e.pose.T_W_B});
+  nlohmann::ordered_json g;
+  g["registered_frames"] = enu.size();
+  g["outlier_fixes"] = gps_outliers;  // left out by the innovation gate (estimator.gps.outlier_gate)
+  const auto error = evaluation::enu_position_error(enu, gt);
+  if (error) {
+    g["first_registered_s"] = ns_to_seconds(enu.front().t - recording.imu.front().t);
+    g["enu_position_rmse_m"] = error->rmse_m;
+    g["enu_horizontal_rmse_m"] = error->horizontal_rmse_m;
+    g["enu_vertical_rmse_m"] = error->vertical_rmse_m;
+    g["enu_position_max_m"] = error->max_m;
+    g["note"] = "no alignment: ground truth taken as ENU at the recording's origin (simulator convention)";
+    // What the fixes allow: the true path registered to them (eq. 6-7), to all at once and causally.
+    std::vector<Timestamp> times;
+    for (const auto& p : enu) times.push_back(p.t);
+    estimation::GpsRegistrationOptions options;
+    options.error_correlation_time_s = est_config.gps_correlation_time_s;
+    const auto reference_json = [](const evaluation::EnuPositionError& e, const char* note) {
+      return nlohmann::ordered_json{{"rmse_m", e.rmse_m},
+                                    {"horizontal_rmse_m", e.horizontal_rmse_m},
+                                    {"vertical_rmse_m", e.vertical_rmse_m},
+                                    {"frames", e.poses},
+                                    {"note", note}};
+    };
+    const Vec3& lever = recording.calibration.gps_lever_arm_B;
+    if (const auto r = evaluation::rigid_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+      g["rigid_registration_reference"] =
+          reference_json(*r, "the ground truth registered to all fixes (4-DOF): the multipath averaged over the walk");
+    if (const auto r = evaluation::causal_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
+      g["causal_registration_reference"] = reference_json(
+          *r, "the ground truth registered to the fixes up to each frame (4-DOF), as a causal estimator sees them");
+  }
+  return g;
+}
+
+/// The device's part of the summary (its stages beside the estimator's, latency, guidance, cues,
+/// the map) and stages.csv; returns the console's words.
+std::string add_device_report(nlohmann::ordered_json& j, DeviceRun& device_run, const runtime::DeviceSpec& device,
+                              const std::vector<FrameTiming>& timings, const std::filesystem::path& out) {
+  nlohmann::ordered_json d = device_run.finish();
+  j["device"] = {{"name", device.name},
+                 {"guidance", std::string(runtime::to_string(device.guidance))},
+                 {"actuator", std::string(interaction::to_string(device.actuator))},
+                 {"speech", device.speech},
+                 {"map_every", device.map_every}};
+  write_stage_csv(out / "stages.csv", timings, device_run.device().stage_times());
+  nlohmann::ordered_json stages = stage_summary(timings);
+  for (auto& [name, value] : d["stages"].items()) stages[name] = value;
+  j["stages"] = stages;
+  for (const char* key : {"latency", "map_latency", "guidance", "plans", "cues", "estimates", "device_thread"})
+    if (d.contains(key)) j[key] = d[key];
+  j["mapping"] = d["mapping"];
+  const double span_s = j["pipeline"]["recording_s"].get<double>();
+  j["pipeline"]["stage_time_per_recording_s"] = span_s > 0 ? stage_total_s(j["stages"]) / span_s : 0.0;
+  return fmt::format("; device {}: {} cues spoken, {} patterns sent, frame-to-cue latency p99 {:.1f} ms", device.name,
+                     d["cues"]["outcomes"]["spoken"].get<std::size_t>(), d["cues"]["outcomes"]["sent"].get<std::size_t>(),
+                     d["latency"]["p99_ms"].get<double>());
+}
+
+/// The recording with what the estimator needs checked: IMU with gyro, a camera, IMU noise.
+io::Recording read_estimator_recording(const std::filesystem::path& path) {
+  io::Recording recording = io::read_camera_recording(path, "IMU and camera data");
+  if (recording.imu.empty()) throw Error(path.string() + ": no IMU data; the estimator needs an IMU");
+  if (std::any_of(recording.imu.begin(), recording.imu.end(), [](const ImuSample& s) { return !s.has_gyro; }))
+    throw Error(path.string() + ": IMU samples without gyro data (accelerometer only, as TUM RGB-D); the " +
+                "estimator needs a gyro");
+  if (recording.calibration.cameras.empty())
+    throw Error(path.string() + ": no camera in the calibration; the estimator needs one");
+  if (!recording.calibration.imu)
+    throw Error(path.string() + ": no IMU noise densities in the calibration; the estimator needs them (for a "
+                "ROS bag: --imu-noise KALIBR_IMU.yaml)");
+  return recording;
+}
+
+/// What the estimator's camera brings: features or images, how many frames, whether any has
+/// depth. Without depth the estimator runs as VIO (est_config.use_depth is cleared).
+struct CameraInput {
+  Input input = Input::kImages;
+  std::size_t frames = 0;
+  bool any_depth = false;
+};
+
+CameraInput camera_input(const io::Recording& recording, const std::string& camera, const std::filesystem::path& path,
+                         estimation::EstimatorConfig& est_config) {
+  const Input input = recording.features.empty() ? Input::kImages : Input::kFeatures;
+  std::size_t camera_frames = 0;
+  bool any_depth = false;
+  if (input == Input::kFeatures) {
+    for (const auto& f : recording.features)
+      if (f.camera == camera) {
+        ++camera_frames;
+        for (const auto& o : f.features) any_depth = any_depth || o.depth_m.has_value();
+      }
+    if (!any_depth && est_config.use_depth) {
+      // No observation has a depth (a camera without a depth sensor): VIO, as for images below.
+      spdlog::info("{}: no feature has a depth: running as VIO", path.string());
+      est_config.use_depth = false;
+    }
+  } else {
+    for (const auto& f : recording.frames)
+      if (f.camera == camera) {
+        ++camera_frames;
+        any_depth = any_depth || f.has_depth();
+      }
+    if (recording.frames.empty())
+      throw Error(path.string() +
+                  ": no camera data: neither feature observations (features.csv) nor image frames; the estimator "
+                  "needs one of them");
+    if (camera_frames == 0)
+      throw Error(path.string() + ": no image frames of camera '" + camera + "', the estimator's camera");
+    if (!any_depth && est_config.use_depth) {
+      // Nothing to measure depth with: VIO (the back end would otherwise ask for a depth noise model).
+      spdlog::info("{}: no depth images: running as VIO", path.string());
+      est_config.use_depth = false;
+    }
+  }
+  return {input, camera_frames, any_depth};
+}
+
 const ConfigKey<bool> kRealtimePrediction{"device.realtime_prediction", true,
                                           "--realtime: the device's stages work on the estimate predicted to a "
                                           "frame's arrival"};
@@ -145,28 +409,20 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
   const double camera_rate_hz = get(config, frontend_rate_key());
-  const std::optional<DeviceSpec> device =
-      config.has("device.name") ? std::optional<DeviceSpec>(read_device_spec(config)) : std::nullopt;
-  // A device maps as its own stage (device_run.hpp); mapping.enabled maps without one.
+  const std::optional<runtime::DeviceSpec> device =
+      config.has("device.name") ? std::optional<runtime::DeviceSpec>(runtime::read_device_spec(config)) : std::nullopt;
+  // A device maps as its own stage (runtime/device.hpp); mapping.enabled maps without one.
   const bool mapping_enabled = !device && get(config, defaulting_to(mapping_enabled_key(), false));
   const mapping::MapperConfig mapper_config = mapping::read_mapper_config(config);
-  MapSessionOptions map_options = read_map_session_options(config);
+  MapSessionOptions map_options;
+  runtime::MappingStageOptions stage_options = runtime::read_mapping_stage_options(config);
   config.reject_unknown_keys(run_schema(device ? &*device : nullptr));
   if (est_config.leaving_anchor == estimation::LeavingAnchorPolicy::kReuse && est_config.loss == estimation::LossKind::kNone)
     spdlog::warn("estimator.features.leaving_anchor=reuse without a robust loss counts reused observations at full "
                  "weight: it diverged on 4 of 20 Monte-Carlo seeds of lab-walk-1 (docs/estimator.md, Consistency); "
                  "use leaving_anchor=reanchor for Gaussian studies");
 
-  io::Recording recording = io::read_camera_recording(a.recording, "IMU and camera data");
-  if (recording.imu.empty()) throw Error(a.recording.string() + ": no IMU data; the estimator needs an IMU");
-  if (std::any_of(recording.imu.begin(), recording.imu.end(), [](const ImuSample& s) { return !s.has_gyro; }))
-    throw Error(a.recording.string() + ": IMU samples without gyro data (accelerometer only, as TUM RGB-D); the " +
-                "estimator needs a gyro");
-  if (recording.calibration.cameras.empty())
-    throw Error(a.recording.string() + ": no camera in the calibration; the estimator needs one");
-  if (!recording.calibration.imu)
-    throw Error(a.recording.string() + ": no IMU noise densities in the calibration; the estimator needs them (for a "
-                "ROS bag: --imu-noise KALIBR_IMU.yaml)");
+  io::Recording recording = read_estimator_recording(a.recording);
   // The estimator's camera (its default: the rig's first); the front end tracks the same one.
   const std::string camera = recording.calibration.cameras.front().name;
   if (camera_rate_hz > 0) thin_camera_frames(recording, camera, camera_rate_hz);
@@ -176,38 +432,10 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
       throw Error(fmt::format("{}: cannot serve device {}: it lacks {}", a.recording.string(), device->name,
                               fmt::join(missing, "; ")));
   }
-  const Input input = recording.features.empty() ? Input::kImages : Input::kFeatures;
-  std::size_t camera_frames = 0;
-  bool any_depth = false;
-  if (input == Input::kFeatures) {
-    for (const auto& f : recording.features)
-      if (f.camera == camera) {
-        ++camera_frames;
-        for (const auto& o : f.features) any_depth = any_depth || o.depth_m.has_value();
-      }
-    if (!any_depth && est_config.use_depth) {
-      // No observation has a depth (a camera without a depth sensor): VIO, as for images below.
-      spdlog::info("{}: no feature has a depth: running as VIO", a.recording.string());
-      est_config.use_depth = false;
-    }
-  } else {
-    for (const auto& f : recording.frames)
-      if (f.camera == camera) {
-        ++camera_frames;
-        any_depth = any_depth || f.has_depth();
-      }
-    if (recording.frames.empty())
-      throw Error(a.recording.string() +
-                  ": no camera data: neither feature observations (features.csv) nor image frames; the estimator "
-                  "needs one of them");
-    if (camera_frames == 0)
-      throw Error(a.recording.string() + ": no image frames of camera '" + camera + "', the estimator's camera");
-    if (!any_depth && est_config.use_depth) {
-      // Nothing to measure depth with: VIO (the back end would otherwise ask for a depth noise model).
-      spdlog::info("{}: no depth images: running as VIO", a.recording.string());
-      est_config.use_depth = false;
-    }
-  }
+  const CameraInput camera_in = camera_input(recording, camera, a.recording, est_config);
+  const Input input = camera_in.input;
+  const std::size_t camera_frames = camera_in.frames;
+  const bool any_depth = camera_in.any_depth;
 
   estimation::SlidingWindowEstimator estimator(recording.calibration, est_config, camera, recording.origin);
   std::optional<runtime::EstimatorDriver> driver_storage;
@@ -237,6 +465,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
                     camera_frames);
   pipeline_input.on_progress = [&progress](std::size_t frames) { progress.update(frames); };
   // mapping.enabled: the map is built as the estimates come (map/, the same folder navaid map writes).
+  std::optional<runtime::MappingStage> map_stage;
   std::optional<MapSession> map_session;
   std::map<Timestamp, const RgbdFrame*> frame_at;
   if (mapping_enabled) {
@@ -247,11 +476,13 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
     map_options.frames_total = camera_frames;
     map_options.align_to = groundtruth_poses(recording);
-    map_session.emplace(mapper_config, *cam, a.recording, a.out / "map", map_options);
+    map_stage.emplace(mapper_config, *cam, stage_options);
+    map_session.emplace(*map_stage, a.recording, a.out / "map", map_options);
     for (const auto& f : recording.frames)
       if (f.camera == camera) frame_at[f.t] = &f;
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point) {
-      if (const auto it = frame_at.find(e.t); it != frame_at.end()) map_session->add(*it->second, e);
+      if (const auto it = frame_at.find(e.t); it != frame_at.end())
+        map_session->record(*it->second, e, map_stage->add(*it->second, e));
     };
   }
   std::unique_ptr<DeviceRun> device_run;
@@ -260,21 +491,22 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     const auto cam = std::find_if(cams.begin(), cams.end(), [&](const CameraCalibration& c) { return c.name == camera; });
     map_options.frames_total = camera_frames;
     map_options.align_to = groundtruth_poses(recording);
-    map_options.network_start = recording_start(recording);
+    stage_options.network_start = recording_start(recording);
     DeviceRunOptions device_options;
-    device_options.drop_when_full = a.realtime;
-    device_options.queue_capacity = a.device_queue;
+    device_options.device.drop_when_full = a.realtime;
+    device_options.device.queue_capacity = a.device_queue;
+    device_options.device.mapping = stage_options;
     device_options.figures = a.plot;
     const bool prediction = get(config, kRealtimePrediction);
-    device_options.predict_at_arrival = a.realtime && prediction;
+    device_options.device.predict_at_arrival = a.realtime && prediction;
     device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,
                                              device_options);
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point arrival) {
-      device_run->on_estimate(e, arrival);
+      device_run->device().on_estimate(e, arrival);
     };
-    if (device_options.predict_at_arrival)
+    if (device_options.device.predict_at_arrival)
       pipeline_input.on_frame_arrival = [&](Timestamp t, std::chrono::steady_clock::time_point arrival) {
-        device_run->on_frame_arrival(t, arrival);
+        device_run->device().on_frame_arrival(t, arrival);
       };
   }
   runtime::PipelineResult result;
@@ -298,13 +530,6 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   // two phases apart by this line).
   spdlog::info("{} frames estimated; evaluating the run", stream.estimates().size());
   const std::vector<evaluation::RunEstimate>& estimates = stream.estimates();
-  std::vector<double> frame_ms, estimator_ms;
-  frame_ms.reserve(stream.timings().size());
-  estimator_ms.reserve(stream.timings().size());
-  for (const auto& r : stream.timings()) {
-    frame_ms.push_back(r.ms);
-    estimator_ms.push_back(r.estimator_ms);
-  }
   std::vector<io::StampedPose> poses;  // trajectory.tum's
   poses.reserve(estimates.size());
   for (const auto& e : estimates)
@@ -317,58 +542,8 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   j["input"] = input == Input::kImages ? "images (front end)" : "features";
   j["depth"] = est_config.use_depth;
   j["frames"] = estimates.size();
-  j["keyframes"] = st.keyframes;
-  j["solves"] = st.solves;
-  j["solver_iterations"] = st.solver_iterations;
-  j["solves_at_iteration_cap"] = st.solves_at_iteration_cap;
-  j["marginalizations"] = st.marginalizations;
-  j["marginalization_failures"] = st.marginalization_failures;
-  j["covariance_failures"] = st.covariance_failures;
-  j["initialization"] = {{"method", estimation::to_string(est_config.init_method)},
-                         {"attempts", st.initialization_attempts},
-                         {"failures", st.initialization_failures},
-                         {"last_failure", st.last_initialization_failure},
-                         {"still_gyro_bias", st.still_gyro_bias_initializations}};
-  j["zero_velocity_frames"] = st.zero_velocity_frames;
-  j["frames_out_of_time_order"] = st.frames_out_of_time_order;
-  if (est_config.use_mag) j["mag_disturbed_states"] = st.mag_disturbed;
-  if (st.failures > 0)
-    spdlog::warn("{} implausible solve(s): {} window restart(s) in the same map frame, {} re-initialization(s) in a "
-                 "new map frame (last: {})",
-                 st.failures, st.restarts, st.map_frame_resets, st.last_failure);
-  if (st.map_frame_resets > 0)
-    spdlog::warn("the map frame W was reset: the ATE aligns the whole run at once and so also measures the jump");
-  j["failures"] = {{"detection", est_config.failure_detection},
-                   {"count", st.failures},
-                   {"restarts", st.restarts},
-                   {"map_frame_resets", st.map_frame_resets},
-                   {"last", st.last_failure}};
-  if (st.initialized_at_s >= 0 && !recording.imu.empty())
-    j["initialization"]["time_s"] = st.initialized_at_s - ns_to_seconds(recording.imu.front().t);
-  if (est_config.estimate_time_offset) j["camera_time_offset_s"] = driver.estimator().camera_time_offset_s();
-  if (est_config.estimate_extrinsic) {
-    const SE3 T = driver.estimator().camera_extrinsic();
-    j["camera_extrinsic_T_B_C"] = {{"t", {T.t.x(), T.t.y(), T.t.z()}},
-                                   {"q_wxyz", {T.q.w(), T.q.x(), T.q.y(), T.q.z()}}};
-  }
-  if (est_config.residual_diagnostics) {
-    nlohmann::ordered_json res = nlohmann::ordered_json::object();
-    for (const auto& [type, r] : st.residuals)
-      res[type] = {{"factors", r.factors},
-                   {"rows", r.rows},
-                   {"chi2_per_row", r.rows ? r.squared_sum / static_cast<double>(r.rows) : 0.0},
-                   {"fraction_beyond_3_sigma_rms",
-                    r.factors ? static_cast<double>(r.beyond_3_sigma_rms) / static_cast<double>(r.factors) : 0.0}};
-    j["residuals"] = res;
-  }
-  std::map<std::string, std::size_t> modes;
-  for (const auto& e : estimates) ++modes[std::string(to_string(e.mode))];
-  nlohmann::ordered_json fractions = nlohmann::ordered_json::object();
-  for (auto m : {EstimatorMode::kInitializing, EstimatorMode::kRgbdVio, EstimatorMode::kVio, EstimatorMode::kImuOnly,
-                 EstimatorMode::kLost}) {
-    const std::string name(to_string(m));
-    fractions[name] = estimates.empty() ? 0.0 : static_cast<double>(modes[name]) / static_cast<double>(estimates.size());
-  }
+  add_estimator_summary(j, driver.estimator(), est_config, recording);
+  const nlohmann::ordered_json fractions = mode_fractions(estimates);
   j["mode_fractions"] = fractions;
   if (map_session) {
     const auto m = map_session->finish({{"recording", std::filesystem::absolute(a.recording).string()},
@@ -376,98 +551,13 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     j["mapping"] = {{"folder", "map"}, {"frames", m["frames"]}, {"time_per_mapped_frame_ms", m["time_per_mapped_frame_ms"]}};
     if (m.contains("quality")) j["mapping"]["quality"] = m["quality"]["occupancy"];
   }
-  j["time_per_frame_ms"] = {{"median", runtime::percentile(frame_ms, 0.5)}, {"p99", runtime::percentile(frame_ms, 0.99)},
-                            {"max", frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end())},
-                            {"estimator_median", runtime::percentile(estimator_ms, 0.5)},
-                            {"estimator_p99", runtime::percentile(estimator_ms, 0.99)}};
-  if (driver.image_input()) {
-    std::vector<double> track_ms, load_ms, live_ms;
-    for (const auto& r : stream.timings())
-      if (r.frontend) {
-        track_ms.push_back(r.frontend->track_ms);
-        load_ms.push_back(r.frontend->load_ms);
-        live_ms.push_back(r.ms - r.frontend->load_ms);
-      }
-    auto& t = j["time_per_frame_ms"];
-    // What a camera handing over pixels would cost: the frame without decoding its PNGs.
-    t["without_image_load_median"] = runtime::percentile(live_ms, 0.5);
-    t["without_image_load_p99"] = runtime::percentile(live_ms, 0.99);
-    t["frontend_median"] = runtime::percentile(track_ms, 0.5);
-    t["frontend_p99"] = runtime::percentile(track_ms, 0.99);
-    t["image_load_median"] = runtime::percentile(load_ms, 0.5);
-    t["image_load_p99"] = runtime::percentile(load_ms, 0.99);
-    j["frontend"] = {{"frames_tracked", driver.frontend_source().frames_tracked()}, {"imu_prediction", frontend_config.imu_prediction}};
-  }
-  std::string ate_text = "no ground truth";
+  add_frame_times(j, stream.timings(), driver, frontend_config.imu_prediction);
   // The ground truth's poses, once for every measure below (an hour's is ~50 MB).
   std::vector<io::StampedPose> gt;
   gt.reserve(recording.groundtruth.size());
   for (const auto& g : recording.groundtruth) gt.push_back({g.t, g.T_W_B});
-  const auto ate = ate_4dof(poses, gt);
-  if (ate) {
-    j["ate"] = {{"alignment", "posyaw (4-DOF: yaw + translation)"},
-                {"rmse_m", ate->rmse_m},
-                {"path_length_m", ate->path_length_m},
-                {"percent_of_path", ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0},
-                {"poses", ate->poses}};
-    ate_text = fmt::format("ATE {:.3f} m over {:.1f} m ({:.2f} %)", ate->rmse_m, ate->path_length_m,
-                           ate->path_length_m > 0 ? 100.0 * ate->rmse_m / ate->path_length_m : 0.0);
-  }
-  {
-    // Consistency: NEES in the frame of the estimator's first state (the one its covariance grows
-    // from); averaged over this run's frames (correlated in time: indicative; average the values
-    // of independent seeds, e.g. with navaid ablate, for the chi-square test).
-    const auto aligned = evaluation::align_to_first_state(estimates, gt);
-    if (!aligned.empty()) {
-      const auto nees = evaluation::first_state_nees(aligned, gt);
-      j["nees"] = {{"frame", "first state (4-DOF: yaw + translation at the first estimate)"},
-                   {"position_mean", nees.position_summary.average},
-                   {"orientation_mean", nees.orientation_summary.average},
-                   {"position_fraction_within_95", nees.position_summary.fraction_inside},
-                   {"orientation_fraction_within_95", nees.orientation_summary.fraction_inside},
-                   {"poses", aligned.size()}};
-      ate_text += fmt::format("; mean NEES position {:.2f}, orientation {:.2f} (3 if consistent)",
-                              nees.position_summary.average, nees.orientation_summary.average);
-    }
-  }
-  if (est_config.use_gps) {
-    // The simulator's ground truth lives in ENU at the recording's origin (T_ENU_W = identity).
-    std::vector<io::StampedPose> enu;
-    for (const auto& e : estimates)
-      if (e.T_ENU_W && e.mode != EstimatorMode::kInitializing) enu.push_back({e.pose.t, *e.T_ENU_W * e.pose.T_W_B});
-    nlohmann::ordered_json g;
-    g["registered_frames"] = enu.size();
-    g["outlier_fixes"] = st.gps_outliers;  // left out by the innovation gate (estimator.gps.outlier_gate)
-    const auto error = evaluation::enu_position_error(enu, gt);
-    if (error) {
-      g["first_registered_s"] = ns_to_seconds(enu.front().t - recording.imu.front().t);
-      g["enu_position_rmse_m"] = error->rmse_m;
-      g["enu_horizontal_rmse_m"] = error->horizontal_rmse_m;
-      g["enu_vertical_rmse_m"] = error->vertical_rmse_m;
-      g["enu_position_max_m"] = error->max_m;
-      g["note"] = "no alignment: ground truth taken as ENU at the recording's origin (simulator convention)";
-      // What the fixes allow: the true path registered to them (eq. 6-7), to all at once and causally.
-      std::vector<Timestamp> times;
-      for (const auto& p : enu) times.push_back(p.t);
-      estimation::GpsRegistrationOptions options;
-      options.error_correlation_time_s = est_config.gps_correlation_time_s;
-      const auto reference_json = [](const evaluation::EnuPositionError& e, const char* note) {
-        return nlohmann::ordered_json{{"rmse_m", e.rmse_m},
-                                      {"horizontal_rmse_m", e.horizontal_rmse_m},
-                                      {"vertical_rmse_m", e.vertical_rmse_m},
-                                      {"frames", e.poses},
-                                      {"note", note}};
-      };
-      const Vec3& lever = recording.calibration.gps_lever_arm_B;
-      if (const auto r = evaluation::rigid_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
-        g["rigid_registration_reference"] =
-            reference_json(*r, "the ground truth registered to all fixes (4-DOF): the multipath averaged over the walk");
-      if (const auto r = evaluation::causal_registration_reference(recording.gps, gt, lever, *recording.origin, times, options))
-        g["causal_registration_reference"] = reference_json(
-            *r, "the ground truth registered to the fixes up to each frame (4-DOF), as a causal estimator sees them");
-    }
-    j["gps"] = g;
-  }
+  const auto [ate, ate_text] = add_truth_comparison(j, poses, estimates, gt);
+  if (est_config.use_gps) j["gps"] = gps_comparison(estimates, gt, recording, est_config, st.gps_outliers);
   {
     const double span_s = ns_to_seconds(recording.imu.back().t - recording.imu.front().t);
     j["pipeline"] = {{"mode", a.realtime ? "realtime" : "replay"},
@@ -489,27 +579,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
       spdlog::warn("topview.png not drawn: {}", e.what());
     }
   }
-  std::string device_text;
-  if (device_run) {
-    nlohmann::ordered_json d = device_run->finish();
-    j["device"] = {{"name", device->name},
-                   {"guidance", std::string(to_string(device->guidance))},
-                   {"actuator", std::string(interaction::to_string(device->actuator))},
-                   {"speech", device->speech},
-                   {"map_every", device->map_every}};
-    write_stage_csv(a.out / "stages.csv", stream.timings(), device_run->stage_times());
-    nlohmann::ordered_json stages = stage_summary(stream.timings());
-    for (auto& [name, value] : d["stages"].items()) stages[name] = value;
-    j["stages"] = stages;
-    for (const char* key : {"latency", "map_latency", "guidance", "plans", "cues", "estimates", "device_thread"})
-      if (d.contains(key)) j[key] = d[key];
-    j["mapping"] = d["mapping"];
-    const double span_s = j["pipeline"]["recording_s"].get<double>();
-    j["pipeline"]["stage_time_per_recording_s"] = span_s > 0 ? stage_total_s(j["stages"]) / span_s : 0.0;
-    device_text = fmt::format("; device {}: {} cues spoken, {} patterns sent, frame-to-cue latency p99 {:.1f} ms",
-                              device->name, d["cues"]["outcomes"]["spoken"].get<std::size_t>(),
-                              d["cues"]["outcomes"]["sent"].get<std::size_t>(), d["latency"]["p99_ms"].get<double>());
-  }
+  const std::string device_text = device_run ? add_device_report(j, *device_run, *device, stream.timings(), a.out) : "";
   std::ofstream(a.out / "summary.json") << j.dump(2) << "\n";
   if (device_run && a.plot) {
     try {
@@ -524,7 +594,8 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   return fmt::format(
       "wrote {}: {} frames from {}, {} keyframes, {:.0f} % RGBD-VIO, {:.0f} % VIO, median {:.1f} ms/frame{}; {}\n",
       a.out.string(), estimates.size(), input == Input::kImages ? "images" : "features", st.keyframes,
-      100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(), runtime::percentile(frame_ms, 0.5),
+      100.0 * fractions["rgbd-vio"].get<double>(), 100.0 * fractions["vio"].get<double>(),
+      j["time_per_frame_ms"]["median"].get<double>(),
       frontend_text, ate_text + device_text);
 }
 

@@ -14,7 +14,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/closed_loop_trial.hpp"
-#include "navaid/experiments/device_preset.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "navaid/experiments/reproduction_statistics.hpp"
 
 namespace navaid::experiments {
@@ -66,7 +66,7 @@ nlohmann::ordered_json run_trial_study(const TrialStudySpec& spec, const fs::pat
   if (spec.keep != "all" && spec.keep != "failures" && spec.keep != "none")
     throw UsageError("--keep is all, failures or none");
   // Configuration errors surface before any trial starts: the preset, the user, the keys.
-  const fs::path preset = spec.device == "none" ? fs::path() : device_preset_file(spec.device);
+  const fs::path preset = spec.device == "none" ? fs::path() : runtime::device_preset_file(spec.device);
   std::vector<std::string> overrides = spec.overrides;
   overrides.push_back("user.model=" + spec.user);
   if (spec.layouts == "random") overrides.push_back("simulation.layout=random");

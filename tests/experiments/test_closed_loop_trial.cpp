@@ -8,7 +8,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/closed_loop_trial.hpp"
-#include "navaid/experiments/device_preset.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "navaid/experiments/recording_run.hpp"
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/experiments/trial_reproduction.hpp"
@@ -25,7 +25,7 @@ using navaid::testing::ScratchDir;
 
 Config no_device(const std::vector<std::string>& overrides = {}) { return Config::parse("{}", "<test>", overrides); }
 Config preset(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  return Config::load(device_preset_file(name), overrides);
+  return Config::load(runtime::device_preset_file(name), overrides);
 }
 
 TEST(ClosedLoopTrial, ACaneUserInTheCorridorReplaysBitForBitAndMissesTheHangingBoard) {

@@ -8,9 +8,9 @@
 #include "navaid/estimation/config_schema.hpp"
 #include "navaid/estimation/estimator_config.hpp"
 #include "navaid/estimation/frontend/image_feature_source.hpp"
-#include "navaid/experiments/config_schema.hpp"
-#include "navaid/experiments/device_preset.hpp"
 #include "navaid/mapping/config_schema.hpp"
+#include "navaid/runtime/config_schema.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "navaid/mapping/mapper.hpp"
 #include "navaid/mapping/segmentation_link.hpp"
 
@@ -33,11 +33,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)config.dump();
     (void)estimation::read_estimator_config(config);
     (void)estimation::read_frontend_config(config);
-    if (config.has("device.name")) (void)experiments::read_device_spec(config);
+    if (config.has("device.name")) (void)runtime::read_device_spec(config);
     (void)mapping::read_mapper_config(config);
     (void)mapping::read_segmentation_link_config(config);
     config.reject_unknown_keys(estimation::config_schema()
-                                   .add(experiments::device_spec_schema())
+                                   .add(runtime::device_spec_schema())
                                    .add(mapping::mapper_config_schema())
                                    .add(mapping::segmentation_link_config_schema()));
   });

@@ -15,7 +15,7 @@ namespace navaid::experiments {
 
 struct TrialStudySpec {
   std::string scenario;
-  std::string device = "none";  ///< a preset of experiments/devices, or none (the cane alone)
+  std::string device = "none";  ///< a preset of runtime/devices, or none (the cane alone)
   std::string user = "typical"; ///< a user model (simulated_user.hpp)
   std::uint64_t first_seed = 1, last_seed = 1;
   /// The layout of each trial's world: "default" (the scenario's documented seed) or "random"

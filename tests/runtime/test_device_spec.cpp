@@ -1,4 +1,4 @@
-// Device presets: the four shipped files, the device.* keys and what a recording lacks.
+// Device presets: the four shipped files and the device.* keys.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/device_preset.hpp"
+#include "navaid/runtime/device_spec.hpp"
 #include "test_support.hpp"
 
 namespace {
 
 using namespace navaid;
-using namespace navaid::experiments;
+using namespace navaid::runtime;
 
 TEST(DevicePreset, TheFourPresetsLoad) {
   EXPECT_EQ(device_preset_names(), (std::vector<std::string>{"augmented-cane", "elabrador", "smart-cane", "w-roma"}));
@@ -61,19 +61,6 @@ TEST(DevicePreset, EveryGuidanceKindRoundTripsThroughItsName) {
     EXPECT_EQ(read_device_spec(Config::parse(yaml, "test.yaml")).guidance, kind) << name;
   }
   EXPECT_EQ(to_string(static_cast<GuidanceKind>(9)), "?");
-}
-
-TEST(DevicePreset, WhatARecordingLacksIsListed) {
-  navaid::testing::ScratchDir dir("device-preset");
-  const DeviceSpec spec = read_device_spec(Config::load(device_preset_file("elabrador")));
-  io::Recording empty;
-  const auto missing = missing_for_device(spec, empty, dir.path());
-  std::string all;
-  for (const auto& m : missing) all += m + "; ";
-  EXPECT_NE(all.find("IMU samples"), std::string::npos) << all;
-  EXPECT_NE(all.find("image frames"), std::string::npos) << all;
-  EXPECT_NE(all.find("GPS fixes"), std::string::npos) << all;
-  EXPECT_NE(all.find("device.route.osm"), std::string::npos) << all;  // not simulated: no streets of its own
 }
 
 }  // namespace

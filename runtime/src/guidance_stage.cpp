@@ -1,8 +1,8 @@
-#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
 
-#include "navaid/experiments/config_schema.hpp"
+#include "navaid/runtime/config_schema.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 
 std::unique_ptr<GuidanceStage> make_guidance_stage(const GuidanceStageContext& context) {
   switch (context.spec.guidance) {
@@ -31,4 +31,4 @@ planning::GuidanceCommand waiting_command(Timestamp t, planning::GuidanceReason 
   return c;
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime

@@ -1,7 +1,7 @@
 // W-ROMA's chain (seed w-roma, §IV): the AprilTag detector on each frame's intensity image, the
 // depth patch around the tag's centre, and hand guidance with the frame's estimate (cases I / II /
 // III: detected with depth, detected beyond the depth range, remembered through the pose). The
-// target's tag: device.tag_id, else the recording's targets.csv.
+// target's tag: device.tag_id, else the mission's.
 #include <fmt/format.h>
 
 #include <array>
@@ -9,28 +9,24 @@
 
 #include "navaid/core/camera.hpp"
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/config_schema.hpp"
-#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
+#include "navaid/runtime/config_schema.hpp"
 #include "navaid/io/image_io.hpp"
-#include "navaid/io/targets_csv.hpp"
 #include "navaid/planning/apriltag_detector.hpp"
 #include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/hand_guidance.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 namespace {
 
 const ConfigKey<int> kTagId{"device.tag_id", std::nullopt, 0, 586,
-                            "hand-target guidance: the object's tag; absent: the recording's targets.csv"};
+                            "hand-target guidance: the object's tag; absent: the mission's (a recording's targets.csv)"};
 
 int target_tag_id(const GuidanceStageContext& c, const std::string& family) {
   if (c.config.has(kTagId.name)) return get(c.config, kTagId);
-  const auto file = c.recording_dir / io::kTargetsCsv;
-  if (std::filesystem::exists(file))
-    for (const auto& t : io::read_targets_csv(file))
-      if (t.tag_family == family) return t.tag_id;
-  throw Error(c.recording_dir.string() + ": device " + c.spec.name + " guides the hand to a tagged object: set " +
-              "device.tag_id (the recording has no targets.csv with a " + family + " tag)");
+  if (c.mission.tag_id) return *c.mission.tag_id;
+  throw Error("device " + c.spec.name + " guides the hand to a tagged object: set device.tag_id (the " + family +
+              " tag on the object)");
 }
 
 SE3 hand_from_camera(const Config& config) {
@@ -56,7 +52,7 @@ class HandTargetStage final : public GuidanceStage {
       : detector_config_(planning::read_apriltag_detector_config(c.config)),
         guidance_config_(planning::read_hand_guidance_config(c.config)),
         tag_id_(target_tag_id(c, detector_config_.family)),
-        camera_(make_camera_model(c.camera, c.recording_dir.string())),
+        camera_(make_camera_model(c.camera, "device " + c.spec.name)),
         detector_(detector_config_),
         guidance_(guidance_config_, *camera_, hand_from_camera(c.config)),
         depth_min_m_(c.camera.depth_max_m > 0.0 ? c.camera.depth_min_m : 0.3),
@@ -105,4 +101,4 @@ std::unique_ptr<GuidanceStage> make_hand_target_stage(const GuidanceStageContext
   return std::make_unique<HandTargetStage>(context);
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime

@@ -2,21 +2,20 @@
 // re-plans on the newest ESDF at 10 Hz inside the 10 m sensing range, the path is followed with the
 // 2 m look-ahead and the PI heading controller (eq. 1) turns the heading error into the steering
 // wheel's command. The goal is given in the frame of the pose where guidance starts (the first
-// localised estimate): forward and left in metres; a simulated recording's default is the end of
-// its path, seen from the true pose at that moment.
+// localised estimate): forward and left in metres, from device.goal_start_frame_m or, asked at
+// that moment, from the mission (device_mission.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/config_schema.hpp"
-#include "navaid/experiments/guidance_stage.hpp"
-#include "navaid/experiments/map_session.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
 #include "navaid/planning/config_schema.hpp"
+#include "navaid/runtime/config_schema.hpp"
 #include "navaid/planning/smart_cane_guidance.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 namespace {
 
 using mapping::Vec2;
@@ -37,15 +36,11 @@ Vec2 toward_map_edge(const Vec2& from, const Vec2& goal, const mapping::GridGeom
 class WalkingPathStage final : public GuidanceStage {
  public:
   explicit WalkingPathStage(const GuidanceStageContext& c)
-      : guidance_(planning::read_smart_cane_guidance_config(c.config)), goal_start_frame_(c.spec.goal_start_frame_m) {
-    if (!goal_start_frame_) {
-      const auto scenario = recording_scenario(c.recording_dir);
-      if (!scenario || c.recording.groundtruth.empty())
-        throw Error(c.recording_dir.string() + ": device " + c.spec.name +
-                    " needs a goal: set device.goal_start_frame_m=FORWARD,LEFT");
-      path_end_W_ = scenario->path.back();
-      groundtruth_ = c.recording.groundtruth;
-    }
+      : guidance_(planning::read_smart_cane_guidance_config(c.config)),
+        goal_start_frame_(c.spec.goal_start_frame_m),
+        ask_goal_(c.mission.walking_goal) {
+    if (!goal_start_frame_ && !ask_goal_)
+      throw Error("device " + c.spec.name + " needs a goal: set device.goal_start_frame_m=FORWARD,LEFT");
   }
 
   GuidanceOutput update(const GuidanceInput& in) override {
@@ -92,24 +87,14 @@ class WalkingPathStage final : public GuidanceStage {
  private:
   /// The goal in W from the first localised estimate: forward / left of its pose.
   Vec2 anchor_goal(const StateEstimate& e) const {
-    Vec2 rel;
-    if (goal_start_frame_) {
-      rel = Vec2(goal_start_frame_->first, goal_start_frame_->second);
-    } else {
-      // The path's end from the true pose at this moment, in that pose's (yaw-only) frame.
-      const auto it = std::lower_bound(groundtruth_.begin(), groundtruth_.end(), e.t,
-                                       [](const GroundTruthState& g, Timestamp t) { return g.t < t; });
-      const GroundTruthState& g = it == groundtruth_.end() ? groundtruth_.back() : *it;
-      const double yaw = planning::body_yaw(g.T_W_B);
-      rel = Eigen::Rotation2Dd(-yaw) * (path_end_W_ - g.T_W_B.t.head<2>());
-    }
+    const auto [forward, left] = goal_start_frame_ ? *goal_start_frame_ : ask_goal_(e.t);
+    const Vec2 rel(forward, left);
     return e.T_W_B.t.head<2>() + Eigen::Rotation2Dd(planning::body_yaw(e.T_W_B)) * rel;
   }
 
   planning::SmartCaneGuidance guidance_;
   std::optional<std::pair<double, double>> goal_start_frame_;
-  Vec2 path_end_W_ = Vec2::Zero();
-  std::vector<GroundTruthState> groundtruth_;
+  WalkingGoal ask_goal_;  ///< asked once, when guidance starts
   std::optional<Vec2> goal_W_;
 };
 
@@ -121,4 +106,4 @@ std::unique_ptr<GuidanceStage> make_walking_path_stage(const GuidanceStageContex
   return std::make_unique<WalkingPathStage>(context);
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime

@@ -4,12 +4,12 @@
 // attitude only, no position, so there is nothing to wait for once a scan exists.
 #include <array>
 
-#include "navaid/experiments/config_schema.hpp"
-#include "navaid/experiments/guidance_stage.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
+#include "navaid/runtime/config_schema.hpp"
 #include "navaid/planning/byu_cost_functions.hpp"
 #include "navaid/planning/config_schema.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 namespace {
 
 const ConfigKey<std::string> kCostFunction{"device.cost_function", std::string("cacf"), {"ficf", "cacf"},
@@ -60,4 +60,4 @@ std::unique_ptr<GuidanceStage> make_obstacle_rumble_stage(const GuidanceStageCon
   return std::make_unique<ObstacleRumbleStage>(context);
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime

@@ -1,5 +1,5 @@
 #pragma once
-// A device preset: one YAML file under experiments/devices/ that says which layers a full-device
+// A device preset: one YAML file under runtime/devices/ that says which layers a full-device
 // run joins and how (docs/full-device-runs.md): the guidance chain, the actuator, speech, what the
 // recording must carry, and the estimator / mapping / planning / interaction keys of that device.
 // Any key can be changed with --set like every other configuration.
@@ -10,9 +10,8 @@
 
 #include "navaid/core/config.hpp"
 #include "navaid/interaction/actuator_pattern.hpp"
-#include "navaid/io/recording.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 
 /// The planning chain that turns estimates and maps into GuidanceCommands.
 enum class GuidanceKind {
@@ -48,7 +47,7 @@ struct DeviceSpec {
 /// Reads device.* (ConfigError naming the key on a bad value).
 DeviceSpec read_device_spec(const Config& config);
 
-/// The folder of the presets: $NAVAID_DEVICES_DIR, else the source tree's experiments/devices,
+/// The folder of the presets: $NAVAID_DEVICES_DIR, else the source tree's runtime/devices,
 /// else the installed share/navaid/devices.
 std::filesystem::path devices_dir();
 /// The presets' names (the YAML files in devices_dir()), sorted.
@@ -56,9 +55,4 @@ std::vector<std::string> device_preset_names();
 /// The preset's file; UsageError listing the presets when there is none of that name.
 std::filesystem::path device_preset_file(const std::string& name);
 
-/// What the recording lacks for the device, in words ("depth images", "GPS fixes", ...); empty
-/// when it serves. A route without its OSM file needs a simulated recording.
-std::vector<std::string> missing_for_device(const DeviceSpec& spec, const io::Recording& recording,
-                                            const std::filesystem::path& recording_dir);
-
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime

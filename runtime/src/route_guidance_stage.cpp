@@ -2,20 +2,19 @@
 // foot router), cut into 10 m sub-routes; on every estimate the nearest sub-route gives the
 // directional subgoal in ENU, the estimate's GPS-map registration T_ENU_W takes it into W, and
 // Direction A* on the newest cost map with path following (Alg. 2) says where to walk. While the
-// registration is missing or unsure the user is told to wait (PathGuidance's rule).
+// registration is missing or unsure the user is told to wait (PathGuidance's rule). The streets,
+// start and destination come with the mission (device_mission.hpp).
 #include <fmt/format.h>
 
 #include "navaid/core/errors.hpp"
-#include "navaid/experiments/config_schema.hpp"
-#include "navaid/experiments/guidance_stage.hpp"
-#include "navaid/experiments/map_session.hpp"
+#include "navaid/runtime/guidance_stage.hpp"
 #include "navaid/planning/config_schema.hpp"
+#include "navaid/runtime/config_schema.hpp"
 #include "navaid/planning/foot_router.hpp"
 #include "navaid/planning/path_guidance.hpp"
 #include "navaid/planning/route_subgoals.hpp"
-#include "navaid/simulation/osm_export.hpp"
 
-namespace navaid::experiments {
+namespace navaid::runtime {
 namespace {
 
 using mapping::Vec2;
@@ -32,39 +31,18 @@ class RouteGuidanceStage final : public GuidanceStage {
         guidance_(planning::read_path_guidance_config(c.config),
                   planning::make_local_planner(get(c.config, kPlanner), c.config)),
         planner_name_(get(c.config, kPlanner)) {
-    const planning::FootRouteConfig route_config = planning::foot_route_config(c.config);
-    if (!c.recording.origin)
-      throw Error(c.recording_dir.string() + ": no geodetic origin; device " + c.spec.name +
-                  " maps its route into the estimator's ENU frame at the recording's origin");
-    std::filesystem::path osm = c.spec.route_osm;
-    std::optional<GeoPoint> from, to, face;
-    if (c.spec.route_to) to = GeoPoint{c.spec.route_to->first, c.spec.route_to->second};
-    if (c.spec.route_face) face = GeoPoint{c.spec.route_face->first, c.spec.route_face->second};
-    if (osm.empty()) {
-      // A simulated recording: its scenario's streets as OSM, and its path's ends.
-      const auto scenario = recording_scenario(c.recording_dir);
-      if (!scenario) throw Error(c.recording_dir.string() + ": not a simulated recording; set device.route.osm");
-      const simulation::OsmExport e = simulation::export_osm(*scenario);
-      simulation::write_osm_export(e, c.out / "route");
-      osm = c.out / "route" / "map.osm";
-      from = GeoPoint{e.truth.start_lat_deg, e.truth.start_lon_deg};
-      if (!to) to = GeoPoint{e.truth.goal_lat_deg, e.truth.goal_lon_deg};
-      if (!face && !e.truth.landmark_name.empty()) face = GeoPoint{e.truth.landmark_lat_deg, e.truth.landmark_lon_deg};
-    } else if (!c.recording.gps.empty()) {
-      from = GeoPoint{c.recording.gps.front().latitude_deg, c.recording.gps.front().longitude_deg};
-    }
-    if (!from || !to) throw Error("device " + c.spec.name + ": the route needs a start (GPS) and device.route.to");
-    graph_ = planning::load_osm_foot_graph(osm);
-    const planning::FootRouter router(graph_, route_config);
-    route_ = router.route(*from, *to);
+    if (!c.mission.route) throw Error("device " + c.spec.name + " walks a route: the mission needs its streets and destination");
+    const RouteMission& m = *c.mission.route;
+    const planning::FootRouter router(m.streets, planning::foot_route_config(c.config));
+    route_ = router.route(m.from, m.to);
     if (!route_.found())
-      throw Error(fmt::format("device {}: no walking route on {} ({}: {})", c.spec.name, osm.string(),
+      throw Error(fmt::format("device {}: no walking route on {} ({}: {})", c.spec.name, m.streets_name,
                               planning::to_string(route_.status), route_.reason));
-    const planning::LocalEnu enu(*c.recording.origin);
+    const planning::LocalEnu enu(m.origin);
     std::vector<Vec2> points;
     for (const GeoPoint& p : route_.points) points.push_back(enu.to_enu(p));
     subroutes_ = planning::cut_sub_routes(points, sub_.subroute_m);
-    if (face) face_ENU_ = enu.to_enu(*face);
+    if (m.face) face_ENU_ = enu.to_enu(*m.face);
     if (subroutes_.empty()) throw Error("device " + c.spec.name + ": the route has no length");
   }
 
@@ -112,7 +90,6 @@ class RouteGuidanceStage final : public GuidanceStage {
   planning::SubRouteConfig sub_;
   planning::PathGuidance guidance_;
   std::string planner_name_;
-  planning::FootGraph graph_;
   planning::Route route_;
   std::vector<planning::SubRoute> subroutes_;
   std::optional<Vec2> face_ENU_;  ///< the destination's landmark
@@ -136,4 +113,4 @@ std::unique_ptr<GuidanceStage> make_route_guidance_stage(const GuidanceStageCont
   return std::make_unique<RouteGuidanceStage>(context);
 }
 
-}  // namespace navaid::experiments
+}  // namespace navaid::runtime
