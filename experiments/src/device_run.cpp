@@ -58,6 +58,7 @@ struct DeviceRun::Impl {
   runtime::DeviceSinks sinks() {
     runtime::DeviceSinks k;
     k.cue = options.cue_sink;
+    k.estimate = options.estimate_sink;
     k.guidance = [this](const interaction::GuidanceTimelineEntry& entry) { timeline->add(entry); };
     k.plan = [this](Timestamp t, std::string_view planner, const planning::Plan& p) {
       plans_csv << fmt::format("{},{},{},{},{:.3f},{},{:.3f},{}\n", t, planner, p.found() ? "found" : "not-found",

@@ -44,8 +44,9 @@ struct TrialDevice::Impl {
         uses_gps(spec.guidance == runtime::GuidanceKind::kRoute),
         imu_dt(seconds_to_ns(1.0 / simulation.imu.rate_hz)),
         camera_dt(seconds_to_ns(1.0 / o.camera_rate_hz)) {
-    driver.emplace(estimation::SlidingWindowEstimator(recording.calibration, estimation::read_estimator_config(config),
-                                                      sim.camera.name, recording.origin));
+    // The rig's features feed the estimator: no image front end.
+    auto driver = std::make_unique<runtime::EstimatorDriver>(estimation::SlidingWindowEstimator(
+        recording.calibration, estimation::read_estimator_config(config), sim.camera.name, recording.origin));
     MapSessionOptions map_options;
     map_options.quality = false;  // a trial scores the walk, not the map
     DeviceRunOptions run_options;
@@ -53,7 +54,9 @@ struct TrialDevice::Impl {
     run_options.device.threaded = false;  // deterministic, and the person reacts to this frame's cues
     run_options.figures = false;
     run_options.cue_sink = o.cue_sink;
+    run_options.estimate_sink = [this](const StateEstimate& e) { last_estimate = e; };
     device_run = std::make_unique<DeviceRun>(spec, config, recording, out, o.render_camera, out, map_options, run_options);
+    device().set_estimator(std::move(driver));
     sensors = std::make_unique<simulation::OnlineSensors>(scenario, sim, nominal, o.render_camera);
     if (o.save_recording) {
       saved = recording;
@@ -61,35 +64,49 @@ struct TrialDevice::Impl {
     }
   }
 
+  runtime::Device& device() { return device_run->device(); }
+
+  /// Renders the sensors due at `t` (one IMU tick; the camera, GNSS and the magnetometer at their
+  /// rates) and hands them to the device in the order the estimator takes them.
   void step(const simulation::KinematicState& state, Timestamp t) {
     if (!next_camera) next_camera = next_gps = next_mag = t;
-    auto tp = Clock::now();
+    const auto t0 = Clock::now();
+    std::vector<SensorEvent> events = render(state, t);
+    const auto t1 = Clock::now();
+    n.sensor_s += seconds_since(t0);
+    const double estimator_before = device().estimator_busy_s();
+    for (SensorEvent& event : events) device().add(std::move(event), t1);
+    const double estimator_s = device().estimator_busy_s() - estimator_before;
+    n.estimator_s += estimator_s;
+    n.device_s += seconds_since(t1) - estimator_s;
+  }
+
+  /// The events of one tick, rendered in the rig's order (the sensors share their random
+  /// streams) and handed over in the estimator's: the camera frame (kept by the device for
+  /// mapping), the IMU sample, GNSS and the magnetometer for the devices that read them (a route),
+  /// then the frame's features, which the estimator attaches the fix of the same moment to.
+  std::vector<SensorEvent> render(const simulation::KinematicState& state, Timestamp t) {
+    std::vector<SensorEvent> events;
     const ImuSample imu = sensors->imu(state, t);
     if (options.save_recording) {
       saved.imu.push_back(imu);
       saved.groundtruth.push_back(
           {imu.t, state.T_W_B, state.v_W, sensors->imu_model().gyro_bias(), sensors->imu_model().accel_bias()});
     }
-    std::vector<StateEstimate> estimates = driver->process(imu);
-    std::optional<RgbdFrame> frame;
-    FeatureFrame features;
-    const bool camera_tick = t >= *next_camera;
-    if (camera_tick) {
+    std::optional<FeatureFrame> features;
+    if (t >= *next_camera) {
       *next_camera += camera_dt;
       features = sensors->features(state.T_W_B, t);
-      if (options.save_recording) saved.features.push_back(features);
-      frame = sensors->rgbd(state.T_W_B, t, n.frames++);
+      if (options.save_recording) saved.features.push_back(*features);
+      events.emplace_back(sensors->rgbd(state.T_W_B, t, n.frames++));
     }
-    n.sensor_s += seconds_since(tp);
-    tp = Clock::now();
-    // GNSS and the magnetometer at their rates, for the devices that read them (a route); before
-    // the frame of the same moment, which the estimator attaches the fix to.
+    events.emplace_back(imu);
     if (uses_gps && t >= *next_gps) {
       *next_gps += seconds_to_ns(1.0 / sim.gps.rate_hz);
       if (auto fix = sensors->gps(state.T_W_B, t)) {
         ++n.gps_fixes;
         if (options.save_recording) saved.gps.push_back(*fix);
-        append(estimates, driver->process(SensorEvent{*fix}));
+        events.emplace_back(*fix);
       }
     }
     if (uses_gps && t >= *next_mag) {
@@ -97,20 +114,11 @@ struct TrialDevice::Impl {
       if (auto m = sensors->mag(state.T_W_B, t)) {
         ++n.mag_samples;
         if (options.save_recording) saved.mag.push_back(*m);
-        append(estimates, driver->process(SensorEvent{*m}));
+        events.emplace_back(*m);
       }
     }
-    if (camera_tick) append(estimates, driver->process(features));
-    n.estimator_s += seconds_since(tp);
-    tp = Clock::now();
-    if (frame) device_run->device().add_frame(std::move(*frame));
-    for (const StateEstimate& e : estimates) device_run->device().on_estimate(e, Clock::now());
-    if (!estimates.empty()) last_estimate = estimates.back();
-    n.device_s += seconds_since(tp);
-  }
-
-  static void append(std::vector<StateEstimate>& to, const std::vector<StateEstimate>& more) {
-    to.insert(to.end(), more.begin(), more.end());
+    if (features) events.emplace_back(std::move(*features));
+    return events;
   }
 
   simulation::SimulationConfig sim;
@@ -119,13 +127,12 @@ struct TrialDevice::Impl {
   io::Recording recording;
   bool uses_gps;
   Timestamp imu_dt, camera_dt;
-  std::optional<runtime::EstimatorDriver> driver;  // the rig's features: no image front end
   std::unique_ptr<DeviceRun> device_run;
   std::unique_ptr<simulation::OnlineSensors> sensors;
   io::Recording saved;  // trial.save_recording
   std::optional<Timestamp> next_camera, next_gps, next_mag;
   TrialDeviceCounts n;
-  std::optional<StateEstimate> last_estimate;
+  std::optional<StateEstimate> last_estimate;  // the device's estimate sink
 };
 
 TrialDevice::TrialDevice(const runtime::DeviceSpec& spec, const Config& config, const simulation::Scenario& scenario,
@@ -152,7 +159,7 @@ nlohmann::ordered_json TrialDevice::finish() {
 }
 
 nlohmann::ordered_json TrialDevice::estimator_summary() const {
-  const estimation::EstimatorStatistics& es = impl_->driver->estimator().statistics();
+  const estimation::EstimatorStatistics& es = impl_->device_run->device().estimator().estimator().statistics();
   return {{"failures", es.failures},
           {"last_failure", es.last_failure},
           {"restarts", es.restarts},

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <deque>
 #include <exception>
 #include <map>
 #include <mutex>
@@ -12,6 +14,7 @@
 #include "navaid/interaction/cue_session.hpp"
 #include "navaid/interaction/device_adapter.hpp"
 #include "navaid/runtime/bounded_queue.hpp"
+#include "navaid/runtime/estimator_driver.hpp"
 #include "navaid/runtime/estimator_pipeline.hpp"
 #include "navaid/runtime/guidance_stage.hpp"
 
@@ -42,18 +45,28 @@ struct DeviceItem {
   std::vector<interaction::GuidanceTimelineEntry> system_events;
 };
 
+/// A new mission or a voice command, for the first estimate at or after t.
+struct UserRequest {
+  Timestamp t = 0;
+  std::optional<DeviceMission> mission;
+  std::optional<interaction::VoiceCommand> voice;
+};
+
 struct Device::Impl {
-  Impl(const DeviceSpec& s, const Config& config, const CameraCalibration& camera, const DeviceMission& mission,
+  Impl(const DeviceSpec& s, const Config& c, const CameraCalibration& cam, const DeviceMission& first,
        const DeviceOptions& o, DeviceSinks k)
       : spec(s),
+        config(c),
+        camera(cam),
+        mission(first),
         options(o),
         sinks(std::move(k)),
-        generator(interaction::read_cue_generator_config(config)),
-        policy(interaction::read_cue_policy_config(config)),
-        device(interaction::make_device_adapter(s.actuator, config)),
-        speech_config(interaction::read_speech_config(config)),
-        map(mapping::read_mapper_config(config), camera, o.mapping),
-        stage(make_guidance_stage({s, config, camera, mission})),
+        generator(interaction::read_cue_generator_config(c)),
+        policy(interaction::read_cue_policy_config(c)),
+        device(interaction::make_device_adapter(s.actuator, c)),
+        speech_config(interaction::read_speech_config(c)),
+        map(mapping::read_mapper_config(c), cam, o.mapping),
+        stage(make_guidance_stage({s, c, cam, first})),
         map_queue(o.queue_capacity, o.drop_when_full),
         guide_queue(o.queue_capacity, o.drop_when_full),
         newest(std::make_shared<MapSnapshot>()) {
@@ -109,10 +122,12 @@ struct Device::Impl {
     const StateEstimate& e = item.estimate;
     std::shared_ptr<const MapSnapshot> snapshot = item.snapshot;
     std::vector<interaction::GuidanceTimelineEntry> entries;
+    std::vector<UserRequest> due;
     {
       std::lock_guard<std::mutex> lock(m);
       if (!snapshot) snapshot = newest;
       entries.swap(pending_events);
+      for (; !requests.empty() && requests.front().t <= e.t; requests.pop_front()) due.push_back(std::move(requests.front()));
     }
     DeviceFrameLog f;
     f.t = e.t;
@@ -120,6 +135,7 @@ struct Device::Impl {
     const auto t1 = Clock::now();
     GuidanceOutput g;
     in_stage("planning", item, [&] {
+      for (UserRequest& r : due) handle(r, e, entries);
       g = stage->update({*item.frame, e, snapshot->maps ? &*snapshot->maps : nullptr,
                          snapshot->scan ? &*snapshot->scan : nullptr});
     });
@@ -172,6 +188,44 @@ struct Device::Impl {
     if (sinks.frame) sinks.frame(f);
   }
 
+  /// What the user asked for, at estimate e: a voice command goes to the cue session (it answers);
+  /// a new mission rebuilds the guidance stage.
+  void handle(UserRequest& r, const StateEstimate& e, std::vector<interaction::GuidanceTimelineEntry>& entries) {
+    if (r.voice) {
+      std::string said = interaction::describe(*r.voice);
+      if (r.voice->kind == interaction::VoiceCommand::Kind::kGoTo) {
+        r.mission = mission.place ? mission.place(r.voice->place, e) : std::nullopt;
+        if (!r.mission) said = interaction::describe(interaction::VoiceCommand{});  // a place it does not know
+      }
+      entries.emplace_back(interaction::SystemEvent{e.t, interaction::SystemEventKind::kVoiceCommand, said});
+    }
+    if (!r.mission) return;
+    earlier_missions.push_back(stage->summary());
+    stage = make_guidance_stage({spec, config, camera, *r.mission});
+    mission = std::move(*r.mission);
+  }
+
+  void request(UserRequest r) {
+    std::lock_guard<std::mutex> lock(m);
+    // In time order; requests of one time keep the order they were made in.
+    const auto at = std::upper_bound(requests.begin(), requests.end(), r.t,
+                                     [](Timestamp t, const UserRequest& q) { return t < q.t; });
+    requests.insert(at, std::move(r));
+  }
+
+  void add(SensorEvent event, Clock::time_point arrival) {
+    if (!driver) throw Error("device " + spec.name + ": sensor events need an estimator (Device::set_estimator)");
+    if (auto* frame = std::get_if<RgbdFrame>(&event); frame && frame->camera == camera.name) {
+      if (!driver->image_input()) return add_frame(std::move(*frame));  // its features stand for it
+      add_frame(RgbdFrame(*frame));  // the device maps and plans from it, the front end tracks it
+    }
+    if (const auto* sample = std::get_if<ImuSample>(&event); sample && options.predict_at_arrival) add_imu(*sample);
+    const auto t0 = Clock::now();
+    const std::vector<StateEstimate> made = driver->process(std::move(event));
+    estimator_s += std::chrono::duration<double>(Clock::now() - t0).count();
+    for (const StateEstimate& e : made) on_estimate(e, arrival);
+  }
+
   /// The timeline's clock starts at the first estimate with a frame (speech.wav's zero).
   Timestamp t_origin(Timestamp t) {
     if (!origin) origin = t;
@@ -197,6 +251,7 @@ struct Device::Impl {
 
   void on_estimate(const StateEstimate& e, Clock::time_point arrival) {
     if (error()) std::rethrow_exception(error());  // stops the estimator: the run ends at the failed stage
+    if (sinks.estimate) sinks.estimate(e);
     std::map<Timestamp, const RgbdFrame*>::const_iterator it;
     {
       std::lock_guard<std::mutex> lock(m);
@@ -310,6 +365,10 @@ struct Device::Impl {
   }
 
   DeviceSpec spec;
+  Config config;  // a copy: the guidance stage is built anew from it for a new mission (the caller's
+                  // ConfigReads notes the first stage's reads, made from the caller's Config)
+  CameraCalibration camera;
+  DeviceMission mission;     // the current one; guide thread
   DeviceOptions options;
   DeviceSinks sinks;
   interaction::CueGeneratorConfig generator;
@@ -320,6 +379,10 @@ struct Device::Impl {
   std::unique_ptr<interaction::CueSession> session;
   MappingStage map;
   std::unique_ptr<GuidanceStage> stage;
+  std::vector<nlohmann::ordered_json> earlier_missions;  // the replaced stages' summaries
+  std::deque<UserRequest> requests;                      // guarded by m
+  std::unique_ptr<EstimatorDriver> driver;               // add()'s
+  double estimator_s = 0;
   std::map<Timestamp, const RgbdFrame*> frame_at;                 // guarded by m
   std::map<Timestamp, std::unique_ptr<RgbdFrame>> added_frames;  // add_frame's, guarded by m
   std::vector<double> mapping_ms, planning_ms, interaction_ms, latency_ms;
@@ -357,6 +420,32 @@ void Device::add_frame(RgbdFrame frame) { impl_->add_frame(std::move(frame)); }
 void Device::add_frame(const RgbdFrame* frame) { impl_->add_frame(frame); }
 void Device::add_imu(const ImuSample& sample) { impl_->add_imu(sample); }
 
+void Device::set_estimator(std::unique_ptr<EstimatorDriver> estimator) {
+  if (!estimator) throw Error("device " + impl_->spec.name + ": no estimator given");
+  if (impl_->driver) throw Error("device " + impl_->spec.name + ": it has its estimator already");
+  impl_->driver = std::move(estimator);
+}
+void Device::add(SensorEvent event, Clock::time_point arrival) { impl_->add(std::move(event), arrival); }
+const EstimatorDriver& Device::estimator() const {
+  if (!impl_->driver) throw Error("device " + impl_->spec.name + ": it has no estimator (Device::set_estimator)");
+  return *impl_->driver;
+}
+double Device::estimator_busy_s() const { return impl_->estimator_s; }
+
+void Device::end_of_input(Clock::time_point arrival) {
+  Impl& d = *impl_;
+  if (!d.driver) throw Error("device " + d.spec.name + ": it has no estimator (Device::set_estimator)");
+  const auto t0 = Clock::now();
+  const std::vector<StateEstimate> last = d.driver->finish();
+  d.estimator_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  for (const StateEstimate& e : last) d.on_estimate(e, arrival);
+}
+
+void Device::set_mission(Timestamp t, DeviceMission mission) { impl_->request({t, std::move(mission), std::nullopt}); }
+void Device::on_voice_command(Timestamp t, const interaction::VoiceCommand& command) {
+  impl_->request({t, std::nullopt, command});
+}
+
 const std::map<Timestamp, StageTimes>& Device::stage_times() const { return impl_->stage_times; }
 const MappingStage& Device::mapping() const { return impl_->map; }
 const interaction::SynthesizedSpeech* Device::speech() const { return impl_->speech.get(); }
@@ -390,6 +479,7 @@ DeviceResult Device::finish() {
   // When what a frame shows (obstacles) is in the map the planners read.
   j["map_latency"] = stage_distribution(d.map_latency_ms);
   j["guidance"] = d.stage->summary();
+  if (!d.earlier_missions.empty()) j["guidance"]["earlier_missions"] = d.earlier_missions;
   j["plans"] = {{"made", d.plans}, {"found", d.plans_found}};
   j["cues"] = {{"timeline_entries", d.timeline_entries}, {"events", events.size()}, {"outcomes", counts},
                {"spoken", spoken}};

@@ -1,14 +1,19 @@
 // runtime::Device: estimates with their frames in, everything it makes out through the sinks; the
 // two-thread replay hands the sinks what the one-thread device does; a stage's failure names the
-// stage and the frame.
+// stage and the frame; what the user asks for while it runs (a new mission, a voice command)
+// takes effect at its time.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "device_fixture.hpp"
 #include "navaid/core/errors.hpp"
 #include "navaid/runtime/device.hpp"
+#include "navaid/runtime/estimator_driver.hpp"
 #include "test_support.hpp"
 
 namespace navaid::runtime {
@@ -137,6 +142,104 @@ TEST(Device, PredictsAtTheFramesArrivalThroughTheImu) {
   EXPECT_EQ(commands, (std::vector<Timestamp>{walk.frames[1].t, walk.frames[2].t, walk.frames[3].t}));
   EXPECT_EQ(r.summary["latency"]["prediction_span_ms"]["frames"], 3);
   EXPECT_NEAR(r.summary["latency"]["prediction_span_ms"]["max_ms"].get<double>(), 300.0, 1e-6);
+}
+
+/// The Smart Cane with its goal from the mission (no device.goal_start_frame_m), two threads.
+struct MissionRun {
+  std::vector<interaction::SystemEvent> said;  // the voice commands the cue session heard
+  nlohmann::ordered_json summary;
+  std::exception_ptr error;
+};
+
+template <class Ask>
+MissionRun run_with_user(const testing::DeviceWalk& walk, DeviceMission mission, Ask&& ask) {
+  const Config config = Config::load(device_preset_file("smart-cane"), {});
+  DeviceOptions options;
+  options.mapping = read_mapping_stage_options(config);
+  MissionRun run;
+  DeviceSinks sinks;
+  sinks.guidance = [&run](const interaction::GuidanceTimelineEntry& entry) {
+    if (const auto* e = std::get_if<interaction::SystemEvent>(&entry);
+        e && e->kind == interaction::SystemEventKind::kVoiceCommand)
+      run.said.push_back(*e);
+  };
+  Device device(read_device_spec(config), config, walk.camera, mission, options, std::move(sinks));
+  ask(device);
+  for (std::size_t i = 0; i < walk.frames.size(); ++i) {
+    device.add_frame(walk.frames[i]);
+    device.on_estimate(walk.estimates[i], Clock::now());
+  }
+  DeviceResult r = device.finish();
+  run.summary = r.summary;
+  run.error = r.error;
+  return run;
+}
+
+DeviceMission walking_goal(double forward, double left) {
+  DeviceMission m;
+  m.walking_goal = [forward, left](Timestamp) { return std::make_pair(forward, left); };
+  return m;
+}
+
+TEST(Device, ANewMissionRebuildsTheGuidanceAtItsTime) {
+  const testing::DeviceWalk walk = testing::rendered_device_walk(12);
+  // Walking +x at 1 m/s from x = 0: frame 6 stands at x = 0.6 m.
+  const MissionRun run = run_with_user(walk, walking_goal(6, 0), [&](Device& device) {
+    device.set_mission(walk.frames[6].t - 1, walking_goal(2, 1));  // handled at frame 6
+  });
+  ASSERT_FALSE(run.error);
+  const auto& g = run.summary["guidance"];
+  ASSERT_EQ(g["earlier_missions"].size(), 1u);
+  EXPECT_NEAR(g["earlier_missions"][0]["goal_W"][0].get<double>(), 6.0, 1e-9);
+  EXPECT_NEAR(g["goal_W"][0].get<double>(), 0.6 + 2.0, 1e-6);  // anchored where the user stood
+  EXPECT_NEAR(g["goal_W"][1].get<double>(), 1.0, 1e-6);
+  EXPECT_TRUE(run.said.empty());
+}
+
+TEST(Device, AnswersTheUsersVoiceAtTheNextEstimate) {
+  const testing::DeviceWalk walk = testing::rendered_device_walk(12);
+  DeviceMission mission = walking_goal(6, 0);
+  std::vector<std::string> asked;
+  mission.place = [&asked](std::string_view place, const StateEstimate& now) -> std::optional<DeviceMission> {
+    asked.emplace_back(place);
+    if (place != "kitchen") return std::nullopt;
+    DeviceMission m = walking_goal(0, 2);
+    EXPECT_NEAR(now.T_W_B.t.x(), 0.9, 1e-9);  // resolved from where the user is when it is handled
+    return m;
+  };
+  interaction::VoiceCommand repeat{interaction::VoiceCommand::Kind::kRepeat, "", "repeat", 1.0};
+  interaction::VoiceCommand garden{interaction::VoiceCommand::Kind::kGoTo, "garden", "go to garden", 1.0};
+  interaction::VoiceCommand kitchen{interaction::VoiceCommand::Kind::kGoTo, "kitchen", "go to kitchen", 1.0};
+  const MissionRun run = run_with_user(walk, mission, [&](Device& device) {
+    device.on_voice_command(walk.frames[9].t - 5, kitchen);  // out of order: sorted by time
+    device.on_voice_command(walk.frames[2].t, repeat);
+    device.on_voice_command(walk.frames[4].t - 5, garden);
+  });
+  ASSERT_FALSE(run.error);
+  ASSERT_EQ(run.said.size(), 3u);
+  EXPECT_EQ(run.said[0].value, "repeat");
+  EXPECT_EQ(run.said[0].t, walk.frames[2].t);
+  EXPECT_EQ(run.said[1].value, "not understood");  // no such place
+  EXPECT_EQ(run.said[1].t, walk.frames[4].t);
+  EXPECT_EQ(run.said[2].value, "go to kitchen");
+  EXPECT_EQ(run.said[2].t, walk.frames[9].t);
+  EXPECT_EQ(asked, (std::vector<std::string>{"garden", "kitchen"}));
+  const auto& g = run.summary["guidance"];
+  ASSERT_EQ(g["earlier_missions"].size(), 1u);
+  EXPECT_NEAR(g["goal_W"][0].get<double>(), 0.9, 1e-6);  // 2 m to the left of frame 9's pose
+  EXPECT_NEAR(g["goal_W"][1].get<double>(), 2.0, 1e-6);
+}
+
+TEST(Device, SensorEventsNeedAnEstimator) {
+  const testing::DeviceWalk walk = testing::rendered_device_walk(1);
+  const Config config = smart_cane_config();
+  DeviceOptions options;
+  options.threaded = false;
+  Device device(read_device_spec(config), config, walk.camera, DeviceMission{}, options, DeviceSinks{});
+  const std::string message = navaid::testing::error_message<Error>([&] { device.add(walk.frames[0]); });
+  EXPECT_NE(message.find("sensor events need an estimator"), std::string::npos) << message;
+  EXPECT_THROW(device.estimator(), Error);
+  EXPECT_THROW(device.set_estimator(nullptr), Error);
 }
 
 }  // namespace

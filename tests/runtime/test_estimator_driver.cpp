@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "navaid/estimation/estimator_config.hpp"
 #include "navaid/io/event_stream.hpp"
 #include "navaid/io/navaid_recording.hpp"
+#include "navaid/runtime/device.hpp"
 #include "navaid/runtime/estimator_driver.hpp"
 #include "navaid/runtime/estimator_pipeline.hpp"
 #include "navaid/simulation/config_schema.hpp"
@@ -89,9 +91,10 @@ TEST(EstimatorDriver, FeatureInputGivesTheEstimatorsOwnEstimatesAndDropsCameraFr
   EXPECT_EQ(driver.estimator().statistics().keyframes, bare.statistics().keyframes);
 }
 
-TEST(EstimatorDriver, ReplayAndPerEventDrivingAreOneEntryPoint) {
-  // navaid run replays through replay_pipeline; a closed-loop trial calls process() per event:
-  // both reach the estimator the same way and give the same estimates bit for bit.
+TEST(EstimatorDriver, ReplayPerEventAndDeviceDrivingAreOneEntryPoint) {
+  // navaid run replays through replay_pipeline; a caller may call process() per event; a device
+  // takes the events itself (Device::add): all reach the estimator the same way and give the same
+  // estimates bit for bit.
   const auto& rec = walk();
   EstimatorDriver replayed(make_estimator(rec));
   std::vector<StateEstimate> from_replay;
@@ -111,6 +114,29 @@ TEST(EstimatorDriver, ReplayAndPerEventDrivingAreOneEntryPoint) {
     for (auto& s : per_event.process(*e)) from_events.push_back(s);
   for (auto& s : per_event.finish()) from_events.push_back(s);
   expect_same(from_replay, from_events);
+
+  // A closed-loop trial hands its events to runtime::Device, which feeds its own EstimatorDriver:
+  // the same estimates again, in the same order.
+  const navaid::Config config =
+      navaid::Config::load(navaid::runtime::device_preset_file("smart-cane"), {"device.goal_start_frame_m=[6,0]"});
+  navaid::runtime::DeviceOptions options;
+  options.threaded = false;
+  options.mapping = navaid::runtime::read_mapping_stage_options(config);
+  std::vector<StateEstimate> from_device;
+  navaid::runtime::DeviceSinks sinks;
+  sinks.estimate = [&](const StateEstimate& e) { from_device.push_back(e); };
+  navaid::runtime::Device device(navaid::runtime::read_device_spec(config), config, rec.calibration.cameras.front(),
+                                 {}, options, std::move(sinks));
+  device.set_estimator(std::make_unique<EstimatorDriver>(make_estimator(rec)));
+  EXPECT_THROW(device.set_estimator(std::make_unique<EstimatorDriver>(make_estimator(rec))), navaid::Error);
+  navaid::io::SensorEventStream events(rec);
+  while (auto e = events.next()) device.add(std::move(*e));
+  device.end_of_input();
+  const navaid::runtime::DeviceResult r = device.finish();
+  EXPECT_FALSE(r.error);
+  expect_same(from_replay, from_device);
+  EXPECT_EQ(device.estimator().estimator().statistics().keyframes, replayed.estimator().statistics().keyframes);
+  EXPECT_GT(device.estimator_busy_s(), 0.0);
 }
 
 TEST(EstimatorDriver, FrontEndCallsNeedImageInput) {

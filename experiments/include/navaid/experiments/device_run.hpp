@@ -23,6 +23,8 @@ struct DeviceRunOptions {
   /// Sees every cue event as the cue session makes it (a simulated user in closed loop feels and
   /// hears them there).
   std::function<void(const interaction::CueEvent&)> cue_sink;
+  /// Sees every estimate the device is handed or makes (what it believes).
+  std::function<void(const StateEstimate&)> estimate_sink;
 };
 
 class DeviceRun {

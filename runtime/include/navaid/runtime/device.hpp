@@ -5,6 +5,13 @@
 // caller's sinks (DeviceSinks); the device writes no files and never sees ground truth. The
 // stages run on two threads of their own behind bounded queues (DeviceOptions): in replay a full
 // queue blocks, so outputs are deterministic; in real time it drops the oldest estimate (counted).
+//
+// Two ways in. With an estimator (set_estimator), the device takes sensor events (add: IMU,
+// camera frames with depth and labels or their features, GNSS, magnetometer) and runs them
+// through runtime::EstimatorDriver itself: replay's device runs and closed-loop trials. Without,
+// the caller's estimator hands it estimates (on_estimate): the real-time pipeline, whose front end
+// and estimator have threads of their own. Either way the user may speak (on_voice_command) or
+// set a new destination (set_mission) while it runs.
 #include <chrono>
 #include <functional>
 #include <map>
@@ -19,6 +26,7 @@
 #include "navaid/core/state_estimate.hpp"
 #include "navaid/estimation/imu_preintegration.hpp"
 #include "navaid/interaction/cue_scheduler.hpp"
+#include "navaid/interaction/voice_command.hpp"
 #include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/interaction/synthesized_speech.hpp"
 #include "navaid/planning/local_planner.hpp"
@@ -27,6 +35,8 @@
 #include "navaid/runtime/mapping_stage.hpp"
 
 namespace navaid::runtime {
+
+class EstimatorDriver;
 
 struct DeviceOptions {
   /// The device's stages on threads of their own (mapping; planning + cues), fed in estimate
@@ -72,6 +82,8 @@ struct CueLatency {
 /// Where the device's outputs go. Every sink is optional; they are called on the device's
 /// threads (map: the mapping thread; the others: the planning thread), one at a time each.
 struct DeviceSinks {
+  /// Each estimate the device is handed or makes (with its covariance), on the caller's thread.
+  std::function<void(const StateEstimate&)> estimate;
   /// Each cue event as the cue session makes it (actuator patterns, speech; a simulated user in
   /// closed loop feels and hears them here).
   std::function<void(const interaction::CueEvent&)> cue;
@@ -112,6 +124,29 @@ class Device {
   void add_frame(const RgbdFrame* frame);
   /// An IMU sample, for predict_at_arrival (in time order).
   void add_imu(const ImuSample& sample);
+
+  /// The estimator add() feeds; once, before the first event.
+  void set_estimator(std::unique_ptr<EstimatorDriver> estimator);
+  /// One sensor event, in time order: a camera frame of the device's camera is kept for mapping
+  /// and planning (add_frame), an IMU sample for the prediction (predict_at_arrival); then the
+  /// event goes through the estimator and every estimate it completes through on_estimate with
+  /// `arrival`. Error without an estimator.
+  void add(SensorEvent event, Clock::time_point arrival = Clock::now());
+  /// The input has ended (a recording's): the estimates the estimator still holds go through the
+  /// stages. A closed-loop trial that stops with its walker does not call it.
+  void end_of_input(Clock::time_point arrival = Clock::now());
+  /// The estimator add() feeds (error without one), and the wall time add() spent in it [s].
+  const EstimatorDriver& estimator() const;
+  double estimator_busy_s() const;
+
+  /// What the user asks for from time `t` on: the guidance stage is built anew for `mission` at
+  /// the first estimate at or after `t` (its error is a stage error naming that frame).
+  void set_mission(Timestamp t, DeviceMission mission);
+  /// What the user said at time `t`, handled at the first estimate at or after `t`: the cue
+  /// session answers it (repeat, where am i, stop guidance, not understood); "go to <place>"
+  /// sets the mission the current mission's `place` resolves from that estimate, or is not
+  /// understood when it resolves none.
+  void on_voice_command(Timestamp t, const interaction::VoiceCommand& command);
 
   /// One estimate, with the wall-clock time its sensor frame arrived (for the frame-to-cue
   /// latency). Estimates without a frame are counted and skipped. A stage's error is thrown as

@@ -7,9 +7,11 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "navaid/core/calibration.hpp"
+#include "navaid/core/state_estimate.hpp"
 #include "navaid/core/time.hpp"
 #include "navaid/planning/foot_router.hpp"
 #include "navaid/planning/osm_foot_graph.hpp"
@@ -29,10 +31,23 @@ struct RouteMission {
 /// estimate, time t): forward and left of where they stand [m].
 using WalkingGoal = std::function<std::pair<double, double>(Timestamp t)>;
 
+struct DeviceMission;
+
+/// The mission "go to <place>" asks for, from where the device believes the user is (`now`, the
+/// estimate the command is handled at); nullopt for a place the device does not know.
+using PlaceResolver = std::function<std::optional<DeviceMission>(std::string_view place, const StateEstimate& now)>;
+
 struct DeviceMission {
   std::optional<RouteMission> route;
   WalkingGoal walking_goal;
   std::optional<int> tag_id;  ///< W-ROMA: the AprilTag on the object to reach
+  /// The places the user may name by voice (empty: "go to" is not understood).
+  PlaceResolver place;
 };
+
+/// Where the estimate puts the user on the map: its position through the GPS-map registration
+/// T_ENU_W, in latitude and longitude about `origin`; nullopt before the registration (a route
+/// from here waits for it).
+std::optional<planning::GeoPoint> geodetic_position(const StateEstimate& estimate, const GeodeticOrigin& origin);
 
 }  // namespace navaid::runtime
