@@ -150,8 +150,6 @@ std::vector<std::string> lines_of(const fs::path& file) {
   return lines;
 }
 
-}  // namespace
-
 // A full-device run (Smart Cane: map, plans, cues) exported for RViz and read back by python3-rosbag.
 TEST_F(RosBagCli, ExportWritesTheRunForRViz) {
   const fs::path run = path("device-run");
@@ -227,3 +225,5 @@ TEST_F(RosBagCli, ExportWritesTheRunForRViz) {
   EXPECT_NE(bad.status, 0);
   EXPECT_NE(bad.output.find("gone"), std::string::npos) << bad.output;
 }
+
+}  // namespace

@@ -19,7 +19,6 @@ using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
 using Mat23 = Eigen::Matrix<double, 2, 3>;
 
-constexpr double kPi = 3.14159265358979323846;
 
 // EuRoC MAV cam0 (Kalibr radtan).
 CameraCalibration euroc_radtan() {
@@ -87,7 +86,7 @@ std::vector<Vec2> pixel_grid(const CameraModel& cam, int steps = 24) {
 // (its image corners see past 90 and have no z = 1 representation).
 bool must_unproject(const CameraModel& cam, const Vec2& pixel) {
   if (cam.distortion() != DistortionModel::kEquidistant) return true;
-  return cam.distorted_from_pixel(pixel).norm() < 85.0 * kPi / 180.0;
+  return cam.distorted_from_pixel(pixel).norm() < 85.0 * M_PI / 180.0;
 }
 
 TEST(Camera, FactoryBuildsTheRequestedModel) {
@@ -263,8 +262,8 @@ TEST(Camera, EquidistantMatchesItsDefinition) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 200; ++i) {
     // Directions up to 89 degrees off axis.
-    const double angle = 89.0 * kPi / 180.0 * std::abs(u(rng));
-    const double azimuth = kPi * u(rng);
+    const double angle = 89.0 * M_PI / 180.0 * std::abs(u(rng));
+    const double azimuth = M_PI * u(rng);
     const Vec3 p = (2.0 + u(rng)) * Vec3(std::sin(angle) * std::cos(azimuth), std::sin(angle) * std::sin(azimuth),
                                          std::cos(angle));
     const double rho = std::hypot(p.x(), p.y());

@@ -22,7 +22,7 @@ using navaid::ConfigSchema;
 namespace {
 
 template <typename F>
-std::string config_error(F&& f) {
+std::string schema_config_error(F&& f) {
   return navaid::testing::error_message<ConfigError>(std::forward<F>(f));
 }
 
@@ -71,28 +71,28 @@ TEST(ConfigSchema, GetReturnsDefaultsWhenAbsentAndValuesWhenGiven) {
 TEST(ConfigSchema, ErrorsNameFileKeyAndRangeAsTheGettersDo) {
   const Config c = Config::parse("sensor: {imu: {rate: 2000, noise: [1, 2]}, camera: {model: orthographic}}\nwindow: x\n",
                                  "walk.yaml", {"seed=-1"});
-  const auto rate = config_error([&] { get(c, kRate); });
-  EXPECT_EQ(rate, config_error([&] { c.get_double("sensor.imu.rate", 200.0, {1.0, 1000.0}); }));
+  const auto rate = schema_config_error([&] { get(c, kRate); });
+  EXPECT_EQ(rate, schema_config_error([&] { c.get_double("sensor.imu.rate", 200.0, {1.0, 1000.0}); }));
   EXPECT_NE(rate.find("walk.yaml"), std::string::npos) << rate;
   EXPECT_NE(rate.find("sensor.imu.rate"), std::string::npos) << rate;
   EXPECT_NE(rate.find("value 2000 is outside the allowed range [1, 1000]"), std::string::npos) << rate;
 
-  const auto missing = config_error([&] { get(c, kBias); });
+  const auto missing = schema_config_error([&] { get(c, kBias); });
   EXPECT_NE(missing.find("missing; expected a number in [0, 1]"), std::string::npos) << missing;
-  EXPECT_NE(config_error([&] { get(c, kWindow); }).find("'x' is not an integer"), std::string::npos);
-  const auto seed = config_error([&] { get(c, kSeed); });
+  EXPECT_NE(schema_config_error([&] { get(c, kWindow); }).find("'x' is not an integer"), std::string::npos);
+  const auto seed = schema_config_error([&] { get(c, kSeed); });
   EXPECT_NE(seed.find("--set seed=-1"), std::string::npos) << seed;
   EXPECT_NE(seed.find("[0, 1000000]"), std::string::npos) << seed;
-  EXPECT_NE(config_error([&] { get(c, kModel); }).find("'orthographic' is not allowed; expected one of: pinhole, fisheye"),
+  EXPECT_NE(schema_config_error([&] { get(c, kModel); }).find("'orthographic' is not allowed; expected one of: pinhole, fisheye"),
             std::string::npos);
-  EXPECT_NE(config_error([&] { get(c, kNoise); }).find("expected 3 numbers in [0, 1], found 2 values"), std::string::npos);
+  EXPECT_NE(schema_config_error([&] { get(c, kNoise); }).find("expected 3 numbers in [0, 1], found 2 values"), std::string::npos);
 }
 
 TEST(ConfigSchema, UnknownKeysAreFoundFromTheSchemaNotFromReads) {
   const Config c = Config::parse("sensor: {imu: {rate: 400, rta: 3}}\ntable: {car: 0.5, person: 1}\n", "walk.yaml");
   // Nothing was read, yet the declared keys and the map's free children are known...
   const ConfigSchema s = schema();
-  const auto msg = config_error([&] { c.reject_unknown_keys(s); });
+  const auto msg = schema_config_error([&] { c.reject_unknown_keys(s); });
   // ...and the misspelt one is reported with the same text as before.
   EXPECT_NE(msg.find("walk.yaml"), std::string::npos) << msg;
   EXPECT_NE(msg.find("sensor.imu.rta"), std::string::npos) << msg;

@@ -13,15 +13,14 @@
 namespace navaid {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Rotation vectors covering the hard regimes: identity, tiny, the series/closed-form switch
 // (0.1 rad), generic, and just below pi.
 std::vector<Vec3> test_rotation_vectors() {
   const Vec3 axis = Vec3(0.3, -0.5, 0.81).normalized();
   std::vector<Vec3> out{Vec3::Zero()};
-  for (double angle : {1e-15, 1e-9, 1e-6, 1e-4, 0.0999999, 0.1, 0.1000001, 0.5, 1.0, 2.0, 3.0, kPi - 1e-4,
-                       kPi - 1e-9}) {
+  for (double angle : {1e-15, 1e-9, 1e-6, 1e-4, 0.0999999, 0.1, 0.1000001, 0.5, 1.0, 2.0, 3.0, M_PI - 1e-4,
+                       M_PI - 1e-9}) {
     out.push_back(angle * axis);
     out.push_back(angle * Vec3::UnitX());
   }
@@ -29,7 +28,7 @@ std::vector<Vec3> test_rotation_vectors() {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 20; ++i) {
     const Vec3 dir = draw_vector<3>([&] { return u(rng); }).normalized();
-    out.push_back(dir * (kPi * 0.5 * (u(rng) + 1.0)));
+    out.push_back(dir * (M_PI * 0.5 * (u(rng) + 1.0)));
   }
   return out;
 }
@@ -86,16 +85,16 @@ TEST(Geometry, So3LogIgnoresQuaternionSignAndStaysWithinPi) {
   // A rotation vector longer than pi comes back as the equivalent short one.
   const Vec3 axis = Vec3(1, 2, -2).normalized();
   const Vec3 back = so3_log(so3_exp(4.0 * axis));
-  EXPECT_LT((back - (4.0 - 2 * kPi) * axis).norm(), 1e-12);
-  EXPECT_LE(back.norm(), kPi);
+  EXPECT_LT((back - (4.0 - 2 * M_PI) * axis).norm(), 1e-12);
+  EXPECT_LE(back.norm(), M_PI);
 }
 
 TEST(Geometry, So3LogExactlyPi) {
   // At pi the axis sign is ambiguous; either answer must be the same rotation with |phi| = pi.
   for (const Vec3& axis : {Vec3(Vec3::UnitX()), Vec3(Vec3(1, -1, 0.5).normalized())}) {
-    const Quat q(Eigen::AngleAxisd(kPi, axis));
+    const Quat q(Eigen::AngleAxisd(M_PI, axis));
     const Vec3 phi = so3_log(q);
-    EXPECT_NEAR(phi.norm(), kPi, 1e-12);
+    EXPECT_NEAR(phi.norm(), M_PI, 1e-12);
     EXPECT_LT(so3_exp(phi).angularDistance(q), 1e-12);
   }
 }
@@ -119,7 +118,7 @@ Mat3 numeric_jacobian3(F f, double h = 1e-6) {
 
 TEST(Geometry, So3RightJacobianMatchesNumeric) {
   for (const Vec3& phi : test_rotation_vectors()) {
-    if (phi.norm() > kPi - 1e-3) continue;  // the log wraps within h of pi
+    if (phi.norm() > M_PI - 1e-3) continue;  // the log wraps within h of pi
     const Quat R = so3_exp(phi);
     // Exp(phi + d) = Exp(phi) Exp(Jr d)  =>  Jr = d Log(Exp(phi)^-1 Exp(phi + d)) / dd.
     const Mat3 numeric = numeric_jacobian3([&](const Vec3& d) { return so3_boxminus(so3_exp(phi + d), R); });
@@ -140,7 +139,7 @@ TEST(Geometry, So3JacobianIdentities) {
     EXPECT_TRUE(Jl.isApprox(so3_exp(phi).toRotationMatrix() * Jr, 1e-12));
   }
   // The inverse stays finite at pi, where the textbook formula is 0/0.
-  EXPECT_TRUE(so3_right_jacobian_inverse(kPi * Vec3::UnitZ()).allFinite());
+  EXPECT_TRUE(so3_right_jacobian_inverse(M_PI * Vec3::UnitZ()).allFinite());
 }
 
 TEST(Geometry, So3BoxplusJacobianMatchesNumeric) {
@@ -170,7 +169,7 @@ TEST(Geometry, Se3ExpMatchesMatrixExponential) {
 
 TEST(Geometry, Se3ExpLogRoundTrip) {
   std::mt19937 rng(11);
-  for (double max_angle : {0.0, 1e-12, 1e-6, 0.1, 1.0, 3.0, kPi - 1e-6}) {
+  for (double max_angle : {0.0, 1e-12, 1e-6, 0.1, 1.0, 3.0, M_PI - 1e-6}) {
     for (int i = 0; i < 10; ++i) {
       const Vec6 xi = random_twist(rng, max_angle);
       EXPECT_TRUE((se3_log(se3_exp(xi)) - xi).isZero(1e-9)) << xi.transpose();
@@ -180,7 +179,7 @@ TEST(Geometry, Se3ExpLogRoundTrip) {
   }
   // Near pi the rotation part is well conditioned; translation goes through Jl^-1, finite at pi.
   Vec6 xi;
-  xi << 0.5, -1.0, 2.0, 0, 0, kPi - 1e-9;
+  xi << 0.5, -1.0, 2.0, 0, 0, M_PI - 1e-9;
   EXPECT_TRUE((se3_log(se3_exp(xi)) - xi).isZero(1e-7));
 }
 
@@ -227,7 +226,7 @@ TEST(Geometry, RpyRoundTripAndConvention) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 50; ++i) {
-    const Vec3 rpy = draw_vector<3>([&] { return u(rng); }).cwiseProduct(Vec3(kPi, 0.5 * kPi, kPi));
+    const Vec3 rpy = draw_vector<3>([&] { return u(rng); }).cwiseProduct(Vec3(M_PI, 0.5 * M_PI, M_PI));
     const Quat q = quat_from_rpy(rpy.x(), rpy.y(), rpy.z());
     EXPECT_TRUE(rpy_from_quat(q).isApprox(rpy, 1e-12)) << rpy.transpose();
     EXPECT_NEAR(yaw_of(q), rpy.z(), 1e-12);
@@ -238,11 +237,11 @@ TEST(Geometry, RpyRoundTripAndConvention) {
                      .toRotationMatrix();
   EXPECT_TRUE(quat_from_rpy(0.1, -0.2, 0.3).toRotationMatrix().isApprox(R, 1e-15));
   // A pure yaw of 90 degrees turns the x axis into y (z up).
-  EXPECT_TRUE((quat_from_rpy(0, 0, kPi / 2) * Vec3::UnitX()).isApprox(Vec3::UnitY(), 1e-15));
+  EXPECT_TRUE((quat_from_rpy(0, 0, M_PI / 2) * Vec3::UnitX()).isApprox(Vec3::UnitY(), 1e-15));
 }
 
 TEST(Geometry, RpyAtGimbalLockIsConsistent) {
-  for (double pitch : {kPi / 2, -kPi / 2}) {
+  for (double pitch : {M_PI / 2, -M_PI / 2}) {
     const Quat q = quat_from_rpy(0.4, pitch, -1.1);
     const Vec3 rpy = rpy_from_quat(q);
     EXPECT_TRUE(rpy.allFinite());

@@ -32,7 +32,7 @@ TEST(FrontendConfig, DefaultsAreValidAndBadValuesNameTheirKey) {
   const auto expect_key = [](const char* key, auto edit) {
     FrontendConfig c;
     edit(c);
-    const auto e = testing::expect_throw<ConfigError>([&] { validate(c, "test.yaml"); }, key);
+    const auto e = navaid::testing::expect_throw<ConfigError>([&] { validate(c, "test.yaml"); }, key);
     ASSERT_TRUE(e.has_value());
     EXPECT_EQ(e->key(), key);
     EXPECT_EQ(e->file(), "test.yaml");

@@ -24,11 +24,10 @@ using testing::jacobians_match;
 using testing::random_pose;
 using testing::random_vector;
 
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(GpsPositionFactor, KnownAnswer) {
   // yaw 90 deg maps W's x axis onto north; antenna 0.5 m above the body origin.
-  double pose[kPoseSize], align[4] = {kPi / 2, 1.0, 2.0, 3.0};
+  double pose[kPoseSize], align[4] = {M_PI / 2, 1.0, 2.0, 3.0};
   pose_to_block(SE3(Quat::Identity(), Vec3(1.0, 0.0, 0.0)), pose);
   const Vec3 lever(0.0, 0.0, 0.5);
   const Mat3 cov = Vec3(4.0, 4.0, 9.0).asDiagonal();
@@ -45,7 +44,7 @@ TEST(GpsPositionFactor, KnownAnswer) {
 TEST(GpsPositionFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
   std::mt19937_64 rng(31);
   const PoseManifold pm;
-  std::uniform_real_distribution<double> yaw(-kPi, kPi);
+  std::uniform_real_distribution<double> yaw(-M_PI, M_PI);
   for (int trial = 0; trial < 20; ++trial) {
     double pose[kPoseSize];
     pose_to_block(random_pose(rng, 20.0), pose);
@@ -137,7 +136,7 @@ TEST(MagnetometerYawFactor, ZeroAtTruthWithTheSimulatedFieldAndYawKnownAnswer) {
   const double sigma = magnetometer_yaw_sigma(0.2e-6, cfg.field_enu_t);
   EXPECT_NEAR(sigma, 0.2e-6 / std::hypot(2e-6, 20e-6), 1e-15);
   std::mt19937_64 rng(41);
-  std::uniform_real_distribution<double> angle(-kPi, kPi);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
   for (int trial = 0; trial < 20; ++trial) {
     const double yaw_ew = angle(rng), body_yaw = angle(rng);
     const SE3 T_ENU_W(quat_from_rpy(0.0, 0.0, yaw_ew), random_vector(rng, 10.0));
@@ -166,13 +165,13 @@ TEST(MagnetometerYawFactor, ZeroAtTruthWithTheSimulatedFieldAndYawKnownAnswer) {
   const double* p[] = {pose, align};
   double r;
   ASSERT_TRUE(f.Evaluate(p, &r, nullptr));
-  EXPECT_NEAR(r * sigma, 2.0 * kPi - 6.0, 1e-12);
+  EXPECT_NEAR(r * sigma, 2.0 * M_PI - 6.0, 1e-12);
 }
 
 TEST(MagnetometerYawFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
   std::mt19937_64 rng(42);
   const PoseManifold pm;
-  std::uniform_real_distribution<double> yaw(-kPi, kPi);
+  std::uniform_real_distribution<double> yaw(-M_PI, M_PI);
   for (int trial = 0; trial < 20; ++trial) {
     double pose[kPoseSize];
     pose_to_block(random_pose(rng), pose);
@@ -182,7 +181,7 @@ TEST(MagnetometerYawFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
     double r;
     const double* p[] = {pose, align};
     ASSERT_TRUE(f.Evaluate(p, &r, nullptr));
-    if (std::abs(std::abs(r * 0.02) - kPi) < 1e-3) continue;  // the wrap is not differentiable
+    if (std::abs(std::abs(r * 0.02) - M_PI) < 1e-3) continue;  // the wrap is not differentiable
     EXPECT_TRUE(jacobians_match(f, {pose, align}, {&pm, nullptr})) << "trial " << trial;
   }
 }

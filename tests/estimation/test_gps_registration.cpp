@@ -21,7 +21,6 @@
 namespace navaid::estimation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const GeodeticOrigin kOrigin{31.0291, 121.4365, 12.0};  // a campus in Shanghai (eLabrador's city)
 
 Eigen::Vector4d alignment_of(double yaw, const Vec3& t) { return {yaw, t.x(), t.y(), t.z()}; }
@@ -89,7 +88,7 @@ std::vector<GpsRegistrationPair> noise_free_pairs(const std::vector<Vec3>& walk_
 double nees(const GpsRegistration& r, const Eigen::Vector4d& truth) {
   const int n = static_cast<int>(r.covariance.rows());
   Eigen::VectorXd e = (r.alignment - truth).head(n);
-  e[0] = std::remainder(e[0], 2.0 * kPi);
+  e[0] = std::remainder(e[0], 2.0 * M_PI);
   return e.dot(r.covariance.ldlt().solve(e));
 }
 
@@ -106,7 +105,7 @@ TEST(GeodesicEnu, FromOriginKnownAnswersAlongTheAxes) {
   // The tangent plane lies at the origin's height h0, the geodesic on the ellipsoid: 200 m on the
   // plane is 200 M / (M + h0) along the meridian (M its radius of curvature); the arc-vs-plane term
   // s^3/(6 M^2) is 3e-8 m.
-  const double a = 6378137.0, e2 = 6.69437999014e-3, sin_phi = std::sin(kOrigin.latitude_deg * kPi / 180.0);
+  const double a = 6378137.0, e2 = 6.69437999014e-3, sin_phi = std::sin(kOrigin.latitude_deg * M_PI / 180.0);
   const double M = a * (1.0 - e2) / std::pow(1.0 - e2 * sin_phi * sin_phi, 1.5);
   EXPECT_NEAR(p.y(), 200.0 * M / (M + kOrigin.height_m), 1e-6);
   EXPECT_DOUBLE_EQ(p.z(), 3.0);     // ellipsoidal height difference, not tangent-plane up
@@ -127,7 +126,7 @@ TEST(GeodesicEnu, AgreesWithTheLocalTangentPlaneToACentimetreOverAFewHundredMetr
   std::vector<GpsFix> fixes;
   std::vector<Vec3> local;
   for (int i = 0; i <= 120; ++i) {
-    const double a = 2.0 * kPi * i / 120.0, r = 300.0 * std::min(1.0, i / 20.0);
+    const double a = 2.0 * M_PI * i / 120.0, r = 300.0 * std::min(1.0, i / 20.0);
     local.emplace_back(r * std::cos(a), r * std::sin(a), 20.0 * std::sin(3 * a) * std::sin(3 * a));
     const Vec3 geo = frame.to_geodetic(local.back());
     GpsFix f;
@@ -172,7 +171,7 @@ TEST(GpsRegistration, RecoversAKnownAlignmentExactlyWithoutNoise) {
         ASSERT_TRUE(r.registered()) << to_string(r.status);
         ASSERT_TRUE(r.height_estimated);
         ASSERT_EQ(r.covariance.rows(), 4);
-        EXPECT_NEAR(std::remainder(r.alignment[0] - yaw, 2 * kPi), 0.0, 1e-9);
+        EXPECT_NEAR(std::remainder(r.alignment[0] - yaw, 2 * M_PI), 0.0, 1e-9);
         EXPECT_LT((r.alignment.tail<3>() - truth.tail<3>()).norm(), 1e-9) << "anisotropic " << anisotropic;
         EXPECT_LT(r.weighted_chi2, 1e-12);
         EXPECT_TRUE(r.T_ENU_W().rotation().isApprox(Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotationMatrix(), 1e-9));
@@ -203,7 +202,7 @@ TEST(GpsRegistration, ErrorIsConsistentWithTheReportedCovarianceMonteCarlo) {
         const GpsRegistration r = register_gps_to_world(pairs, kOrigin, o);
         ASSERT_TRUE(r.registered());
         sum += nees(r, truth);
-        const double dyaw = std::remainder(r.alignment[0] - truth[0], 2 * kPi);
+        const double dyaw = std::remainder(r.alignment[0] - truth[0], 2 * M_PI);
         yaw_sum += dyaw * dyaw / r.covariance(0, 0);
       }
       // chi-square(k) bounds at +-4 sigma (normal approximation, k >= 300).
@@ -331,7 +330,7 @@ TEST(GpsRegistration, AMultipathJumpBarelyMovesTheRobustEstimate) {
   const GpsRegistration ref = solve(clean, RobustLoss::kHuber);
   auto shift = [&](const GpsRegistration& r) {  // Mahalanobis distance from the clean estimate
     Eigen::Vector4d d = r.alignment - ref.alignment;
-    d[0] = std::remainder(d[0], 2 * kPi);
+    d[0] = std::remainder(d[0], 2 * M_PI);
     return std::sqrt(d.dot(ref.covariance.ldlt().solve(d)));
   };
   const double one_plain = shift(solve(one, RobustLoss::kNone));
@@ -384,16 +383,16 @@ TEST(GpsRegistration, RejectsBadInputWithClearErrors) {
   const auto good = noise_free_pairs(synthetic_walk(10, 30.0), alignment_of(0, Vec3::Zero()), rng, false);
   auto bad = good;
   bad[2].antenna_W.x() = std::nan("");
-  EXPECT_NE(testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("pair 2"), std::string::npos);
+  EXPECT_NE(navaid::testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("pair 2"), std::string::npos);
   bad = good;
   bad[3].fix.latitude_deg = 95.0;
-  EXPECT_NE(testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("latitude"), std::string::npos);
+  EXPECT_NE(navaid::testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("latitude"), std::string::npos);
   bad = good;
   bad[1].fix.covariance_enu(0, 1) = 0.5;
-  EXPECT_NE(testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("symmetric"), std::string::npos);
+  EXPECT_NE(navaid::testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("symmetric"), std::string::npos);
   bad = good;
   bad[1].fix.covariance_enu = Vec3(1.0, -1.0, 1.0).asDiagonal();
-  EXPECT_NE(testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("positive definite"),
+  EXPECT_NE(navaid::testing::error_message<Error>([&] { register_gps_to_world(bad, kOrigin); }).find("positive definite"),
             std::string::npos);
   GeodeticOrigin bad_origin = kOrigin;
   bad_origin.longitude_deg = std::nan("");
@@ -401,7 +400,7 @@ TEST(GpsRegistration, RejectsBadInputWithClearErrors) {
 
   GpsRegistrationOptions o;
   o.robust_threshold = 0.0;
-  const auto e = testing::expect_throw<ConfigError>([&] { register_gps_to_world(good, kOrigin, o); });
+  const auto e = navaid::testing::expect_throw<ConfigError>([&] { register_gps_to_world(good, kOrigin, o); });
   ASSERT_TRUE(e);
   EXPECT_EQ(e->key(), "robust_threshold");
   o = {};
@@ -454,7 +453,7 @@ TEST(GpsRegistration, RegistersASimulatedRoute1WalkAgainstItsShiftedGroundTruth)
   ASSERT_TRUE(rc.registered()) << to_string(rc.status);
   EXPECT_EQ(rc.alignment, r.alignment);  // same estimate, honest covariance
   EXPECT_GT(rc.covariance(0, 0), 4.0 * r.covariance(0, 0));
-  const double yaw_err = std::remainder(r.alignment[0] - truth[0], 2 * kPi);
+  const double yaw_err = std::remainder(r.alignment[0] - truth[0], 2 * M_PI);
   const double horizontal_err = (r.alignment.segment<2>(1) - truth.segment<2>(1)).norm();
   const double height_err = std::abs(r.alignment[3] - truth[3]);
   // The multipath bias is correlated over ~30 s, which a per-fix covariance does not express: the
@@ -478,11 +477,11 @@ TEST(GpsRegistration, RegistersASimulatedRoute1WalkAgainstItsShiftedGroundTruth)
   EXPECT_LT(std::abs(yaw_err), 3.0 * rc.yaw_sigma_rad);
   EXPECT_LT(nees(rc, truth), 18.47);    // chi-square(4) 99.9% quantile
   std::cout << "[ route1, " << pairs.size() << " fixes, " << trajectory.length() << " m ] yaw error "
-            << yaw_err * 180 / kPi << " deg (sigma " << r.yaw_sigma_rad * 180 / kPi << "), horizontal "
+            << yaw_err * 180 / M_PI << " deg (sigma " << r.yaw_sigma_rad * 180 / M_PI << "), horizontal "
             << horizontal_err << " m (sigma " << std::sqrt(r.covariance(1, 1) + r.covariance(2, 2)) << "), height "
             << height_err << " m (sigma " << std::sqrt(r.covariance(3, 3)) << "), NEES " << nees(r, truth)
             << ", spread " << r.spread_m << " m; centroid error " << centroid_err.transpose() << " m, mean multipath bias "
-            << mean_bias.transpose() << " m; with tau = 30 s: yaw sigma " << rc.yaw_sigma_rad * 180 / kPi
+            << mean_bias.transpose() << " m; with tau = 30 s: yaw sigma " << rc.yaw_sigma_rad * 180 / M_PI
             << " deg, horizontal sigma " << std::sqrt(rc.covariance(1, 1) + rc.covariance(2, 2)) << " m, NEES "
             << nees(rc, truth) << "\n";
 }

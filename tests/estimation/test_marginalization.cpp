@@ -38,8 +38,8 @@ using testing::random_pose;
 using testing::random_rotation;
 using testing::random_vector;
 
-constexpr double kFocal = 460.0;
-constexpr double kSigmaPx = 1.5;
+constexpr double kMarginalFocal = 460.0;
+constexpr double kMarginalSigmaPx = 1.5;
 
 // ---------------------------------------------------------------------------------------------
 // Helpers independent of the code under test: dense Jacobians from Ceres' own Problem::Evaluate.
@@ -212,12 +212,12 @@ Batch make_batch(std::uint64_t seed) {
                                batch.speed_bias[0].data(), BlockKind::kEuclidean, kSpeedBiasSize, speed_bias_sigma)),
                            nullptr, {batch.speed_bias[0].data()}});
 
-  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.05);
+  const double sigma_lambda = inverse_depth_sigma(0.2, kMarginalFocal, 0.05);
   const auto cauchy = std::make_shared<ceres::CauchyLoss>(1.0);
   constexpr int kFeatures = 12;
   batch.lambda.resize(kFeatures);
   std::uniform_real_distribution<double> xy(-0.5, 0.5), depth(2.0, 7.0);
-  const double pixel = kSigmaPx / kFocal;
+  const double pixel = kMarginalSigmaPx / kMarginalFocal;
   for (int f = 0; f < kFeatures; ++f) {
     const int a = f % 2;  // anchors in keyframes 0 and 1
     batch.anchor.push_back(a);
@@ -234,10 +234,10 @@ Batch make_batch(std::uint64_t seed) {
       const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + draw_vector<2>([&] { return normal(rng); }) * pixel;
       const std::vector<double*> blocks{batch.pose[a].data(), batch.pose[t].data(), batch.extrinsic.data(),
                                         batch.lambda[f].data()};
-      batch.factors.push_back({std::make_shared<ReprojectionFactor>(m_a, m_t, kFocal, kSigmaPx), cauchy, blocks});
+      batch.factors.push_back({std::make_shared<ReprojectionFactor>(m_a, m_t, kMarginalFocal, kMarginalSigmaPx), cauchy, blocks});
       if ((f + t) % 2 == 0) {
         batch.factors.push_back({std::make_shared<Depth3dFactor>(m_a, m_t, P_ct.z() * (1.0 + 0.01 * normal(rng)),
-                                                                 kFocal, sigma_lambda, kSigmaPx),
+                                                                 kMarginalFocal, sigma_lambda, kMarginalSigmaPx),
                                  cauchy, blocks});
       }
     }
@@ -332,8 +332,8 @@ TEST(Marginalization, ThreeParameterLandmarksGiveTheSchurComplement) {
   std::mt19937_64 rng(21);
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> xy(-0.5, 0.5), depth(2.0, 7.0);
-  const double pixel = kSigmaPx / kFocal;
-  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.05);
+  const double pixel = kMarginalSigmaPx / kMarginalFocal;
+  const double sigma_lambda = inverse_depth_sigma(0.2, kMarginalFocal, 0.05);
   const auto cauchy = std::make_shared<ceres::CauchyLoss>(1.0);
   constexpr int kLandmarks = 10;
   batch.landmark.resize(kLandmarks + 1);
@@ -350,14 +350,14 @@ TEST(Marginalization, ThreeParameterLandmarksGiveTheSchurComplement) {
     const Eigen::Vector2d m_a = P_ca.head<2>() / z + draw_vector<2>([&] { return normal(rng); }) * pixel;
     auto& l = batch.landmark[f];
     l = {m_a.x(), m_a.y(), (1.0 / z) * (1.0 + 0.03 * normal(rng))};
-    batch.factors.push_back({std::make_shared<AnchorBearingFactor>(m_a, kFocal, kSigmaPx), nullptr, {l.data()}});
+    batch.factors.push_back({std::make_shared<AnchorBearingFactor>(m_a, kMarginalFocal, kMarginalSigmaPx), nullptr, {l.data()}});
     batch.factors.push_back(
         {std::make_shared<AnchorInverseDepthFactor>(z + 0.02 * normal(rng), sigma_lambda), nullptr, {l.data()}});
     for (int t = a + 1; t < Batch::kKeyframes; ++t) {
       const SE3 T_W_Ct = pose_from_block(batch.pose[t].data()) * T_B_C;
       const Vec3 P_ct = T_W_Ct.inverse() * P_w;
       const Eigen::Vector2d m_t = P_ct.head<2>() / P_ct.z() + draw_vector<2>([&] { return normal(rng); }) * pixel;
-      batch.factors.push_back({std::make_shared<LandmarkReprojectionFactor>(m_t, kFocal, kSigmaPx), cauchy,
+      batch.factors.push_back({std::make_shared<LandmarkReprojectionFactor>(m_t, kMarginalFocal, kMarginalSigmaPx), cauchy,
                                {batch.pose[a].data(), batch.pose[t].data(), batch.extrinsic.data(), l.data()}});
     }
   }
@@ -368,7 +368,7 @@ TEST(Marginalization, ThreeParameterLandmarksGiveTheSchurComplement) {
   unobserved = {0.1, -0.2, 0.3};
   batch.landmark_anchor.push_back(0);
   batch.factors.push_back(
-      {std::make_shared<AnchorBearingFactor>(Eigen::Vector2d(0.1, -0.2), kFocal, kSigmaPx), nullptr, {unobserved.data()}});
+      {std::make_shared<AnchorBearingFactor>(Eigen::Vector2d(0.1, -0.2), kMarginalFocal, kMarginalSigmaPx), nullptr, {unobserved.data()}});
   const MarginalizationPrior with_unobserved = marginalizer_for(batch, batch.leaving()).marginalize();
   EXPECT_LT(relative_difference(with_unobserved.information(), prior.information()), 1e-12);
   EXPECT_LT(relative_difference(with_unobserved.gradient(), prior.gradient()), 1e-12);
@@ -822,7 +822,7 @@ TEST(Marginalization, BadInputIsRejected) {
   pose_to_block(SE3(), extrinsic);
   Marginalizer failing;
   for (double* p : {anchor, target, extrinsic}) failing.set_manifold(p, BlockKind::kPose);
-  failing.add({std::make_shared<ReprojectionFactor>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), kFocal, kSigmaPx),
+  failing.add({std::make_shared<ReprojectionFactor>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), kMarginalFocal, kMarginalSigmaPx),
                nullptr, {anchor, target, extrinsic, lambda}, {0}});
   EXPECT_THROW(failing.marginalize(), Error);
 

@@ -281,27 +281,27 @@ TEST(PoseChange, MalformedInputThrows) {
   for (auto m : {PoseChangeMethod::kHybrid, PoseChangeMethod::kPnp}) {
     auto c = s.correspondences;
     c[5].m_j.x() = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_NE(testing::error_message<Error>([&] { estimate_pose_change(c, m, {}); }).find("correspondence 5"),
+    EXPECT_NE(navaid::testing::error_message<Error>([&] { estimate_pose_change(c, m, {}); }).find("correspondence 5"),
               std::string::npos);
     c = s.correspondences;
     c[7].depth_i = 0.0;
-    EXPECT_NE(testing::error_message<Error>([&] { estimate_pose_change(c, m, {}); }).find("depth"), std::string::npos);
+    EXPECT_NE(navaid::testing::error_message<Error>([&] { estimate_pose_change(c, m, {}); }).find("depth"), std::string::npos);
     c[7].depth_i = -1.0;
-    testing::expect_throw<Error>([&] { estimate_pose_change(c, m, {}); });
+    navaid::testing::expect_throw<Error>([&] { estimate_pose_change(c, m, {}); });
     c[7].depth_i = std::numeric_limits<double>::infinity();
-    testing::expect_throw<Error>([&] { estimate_pose_change(c, m, {}); });
+    navaid::testing::expect_throw<Error>([&] { estimate_pose_change(c, m, {}); });
   }
   PoseChangeOptions o;
   o.ransac_threshold_px = 0.0;
-  EXPECT_EQ(testing::expect_throw<ConfigError>([&] { estimate_pose_change(s.correspondences, PoseChangeMethod::kHybrid, o); })
+  EXPECT_EQ(navaid::testing::expect_throw<ConfigError>([&] { estimate_pose_change(s.correspondences, PoseChangeMethod::kHybrid, o); })
                 ->key(),
             "ransac_threshold_px");
   o = {};
   o.ransac_confidence = 1.0;
-  testing::expect_throw<ConfigError>([&] { validate(o); });
+  navaid::testing::expect_throw<ConfigError>([&] { validate(o); });
   o = {};
   o.min_correspondences = 4;
-  testing::expect_throw<ConfigError>([&] { validate(o); });
+  navaid::testing::expect_throw<ConfigError>([&] { validate(o); });
 }
 
 TEST(PoseChange, TooFewCorrespondencesReturnsNullopt) {

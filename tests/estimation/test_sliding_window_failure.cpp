@@ -79,7 +79,7 @@ TEST(FailureDetection, NamesEachImplausibility) {
 // ---------------------------------------------------------------------------------------------
 // On walks
 
-const io::Recording& walk() {
+const io::Recording& failure_walk() {
   static const io::Recording rec = testing::simulate_recording(
       "swf_walk", {"scenario=lab-walk-1", "mount=hand", "simulation.mode=features", "duration=12", "seed=3",
                    "sensor.camera.rate=15", "features.max_per_frame=80"});
@@ -88,7 +88,7 @@ const io::Recording& walk() {
 
 // The walk with `accel` added to the specific force for 50 ms from 6 s after the first frame.
 io::Recording with_shock(const Vec3& accel) {
-  io::Recording rec = walk();
+  io::Recording rec = failure_walk();
   const Timestamp t0 = rec.features.front().t;
   for (auto& s : rec.imu) {
     const double t = ns_to_seconds(s.t - t0);
@@ -118,10 +118,10 @@ double max_error(const std::vector<StateEstimate>& est, const io::Recording& rec
 }
 
 TEST(SlidingWindowFailure, ANormalWalkHasNoFailure) {
-  const auto run = testing::run_estimator(walk(), {});
+  const auto run = testing::run_estimator(failure_walk(), {});
   EXPECT_EQ(run.stats.failures, 0u) << run.stats.last_failure;
   EXPECT_EQ(run.stats.restarts, 0u);
-  EXPECT_LT(max_error(run.estimates, walk(), 0, 12), 0.05);
+  EXPECT_LT(max_error(run.estimates, failure_walk(), 0, 12), 0.05);
 }
 
 TEST(SlidingWindowFailure, AShockRestartsTheWindowInTheSameMapFrame) {

@@ -27,9 +27,9 @@ io::Recording simulate(const std::string& name, const std::vector<std::string>& 
   return testing::simulate_recording(name, overrides);
 }
 
-using RunResult = testing::EstimatorRun;
+using SensorsRun = testing::EstimatorRun;
 
-RunResult run(const io::Recording& rec, const std::vector<std::string>& overrides) {
+SensorsRun sensors_run(const io::Recording& rec, const std::vector<std::string>& overrides) {
   return testing::run_estimator(rec, overrides, /*flush=*/false);
 }
 
@@ -113,8 +113,8 @@ TEST(SlidingWindowMag, BoundsTheYawDriftOfALongWalk) {
   const std::vector<std::string> vio = {"estimator.depth.enabled=false"};
   std::vector<std::string> with_mag = vio;
   with_mag.push_back("estimator.factors.mag=true");
-  const RunResult off = run(rec, vio);
-  const RunResult on = run(rec, with_mag);
+  const SensorsRun off = sensors_run(rec, vio);
+  const SensorsRun on = sensors_run(rec, with_mag);
   const auto d_off = yaw_drift(off.estimates, rec.groundtruth);
   const auto d_on = yaw_drift(on.estimates, rec.groundtruth);
   ASSERT_GT(d_off.size(), 200u);
@@ -147,8 +147,8 @@ TEST(SlidingWindowMag, IsDeterministic) {
     cut(r.imu), cut(r.features), cut(r.mag), cut(r.gps);
     return r;
   }();
-  const RunResult a = run(shortened, {"estimator.factors.mag=true"});
-  const RunResult b = run(shortened, {"estimator.factors.mag=true"});
+  const SensorsRun a = sensors_run(shortened, {"estimator.factors.mag=true"});
+  const SensorsRun b = sensors_run(shortened, {"estimator.factors.mag=true"});
   ASSERT_EQ(a.estimates.size(), b.estimates.size());
   for (std::size_t i = 0; i < a.estimates.size(); ++i) {
     EXPECT_EQ(a.estimates[i].T_W_B.q.coeffs(), b.estimates[i].T_W_B.q.coeffs());
@@ -221,8 +221,8 @@ TEST(SlidingWindowGps, JointAndDecoupledBothPutTheTrackIntoEnu) {
   }
   const double fixes = std::sqrt(fix_sq / static_cast<double>(rec.gps.size()));
 
-  const RunResult joint = run(rec, {"estimator.factors.gps=true"});
-  const RunResult decoupled = run(rec, {"estimator.factors.gps=true", "estimator.gps.mode=decoupled"});
+  const SensorsRun joint = sensors_run(rec, {"estimator.factors.gps=true"});
+  const SensorsRun decoupled = sensors_run(rec, {"estimator.factors.gps=true", "estimator.gps.mode=decoupled"});
   const EnuErrors ej = enu_errors(joint.estimates, rec), ed = enu_errors(decoupled.estimates, rec);
   EXPECT_EQ(joint.stats.gps_registrations, 1u);
   // Decoupled re-registers at (nearly) every fix after the first registration.
@@ -244,8 +244,8 @@ TEST(SlidingWindowGps, JointAndDecoupledBothPutTheTrackIntoEnu) {
     v.erase(std::remove_if(v.begin(), v.end(), [&](const auto& x) { return x.t > end; }), v.end());
   };
   cut(head.imu), cut(head.features), cut(head.mag), cut(head.gps);
-  const RunResult vio = run(head, {});
-  const RunResult decoupled_head = run(head, {"estimator.factors.gps=true", "estimator.gps.mode=decoupled"});
+  const SensorsRun vio = sensors_run(head, {});
+  const SensorsRun decoupled_head = sensors_run(head, {"estimator.factors.gps=true", "estimator.gps.mode=decoupled"});
   ASSERT_EQ(vio.estimates.size(), decoupled_head.estimates.size());
   for (std::size_t i = 0; i < vio.estimates.size(); ++i)
     ASSERT_EQ(vio.estimates[i].T_W_B.t, decoupled_head.estimates[i].T_W_B.t) << i;

@@ -46,7 +46,7 @@ TEST(FeatureTrackStore, AnchorsAtFirstObservationAndReanchorsWhenItLeaves) {
 TEST(FeatureTrackStore, FrameIdsMustIncrease) {
   FeatureTrackStore store;
   store.add_frame(3, {obs(1, 0, 0)});
-  testing::expect_throw<Error>([&] { store.add_frame(3, {obs(1, 0, 0)}); }, "repeated frame id");
+  navaid::testing::expect_throw<Error>([&] { store.add_frame(3, {obs(1, 0, 0)}); }, "repeated frame id");
 }
 
 }  // namespace

@@ -34,20 +34,20 @@ Vec3 point_in_target(const TwoViews& v) {
 
 std::vector<double*> blocks(TwoViews& v) { return {v.anchor, v.target, v.extrinsic, v.lambda()}; }
 
-constexpr double kFocal = 525.0;
+constexpr double kVisualFocal = 525.0;
 
 TEST(ReprojectionFactor, ZeroAtTruthAndPixelScaledOffIt) {
   std::mt19937_64 rng(11);
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
-    const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
+    const ReprojectionFactor f(v.m_anchor, v.m_target, kVisualFocal, 1.5);
     Eigen::Vector2d r;
     ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
     EXPECT_LT(r.norm(), 1e-9);
     perturb(v, rng);
     const Vec3 P = point_in_target(v);
     ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
-    const Eigen::Vector2d expected = kFocal / 1.5 * (P.head<2>() / P.z() - v.m_target);
+    const Eigen::Vector2d expected = kVisualFocal / 1.5 * (P.head<2>() / P.z() - v.m_target);
     EXPECT_LT((r - expected).norm(), 1e-9 * (1.0 + expected.norm()));
   }
 }
@@ -57,7 +57,7 @@ TEST(ReprojectionFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
   const PoseManifold pm;
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
-    const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
+    const ReprojectionFactor f(v.m_anchor, v.m_target, kVisualFocal, 1.5);
     perturb(v, rng);
     EXPECT_TRUE(jacobians_match(f, blocks(v), {&pm, &pm, &pm, nullptr})) << "trial " << trial;
   }
@@ -68,7 +68,7 @@ TEST(ReprojectionFactor, RejectsBadSettingsAndPointsBehindTheCamera) {
   EXPECT_THROW(ReprojectionFactor({0, 0}, {0, 0}, 500.0, -1.0), ConfigError);
   std::mt19937_64 rng(13);
   TwoViews v = two_views(rng);
-  const ReprojectionFactor f(v.m_anchor, v.m_target, kFocal, 1.5);
+  const ReprojectionFactor f(v.m_anchor, v.m_target, kVisualFocal, 1.5);
   *v.lambda() = -*v.lambda();  // the point is now behind both cameras
   Eigen::Vector2d r;
   EXPECT_FALSE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
@@ -95,10 +95,10 @@ TEST(InverseDepthFactor, KnownAnswersAndJacobian) {
 
 TEST(Depth3dFactor, ZeroAtTruthAndPaperResidualOffIt) {
   std::mt19937_64 rng(21);
-  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
+  const double sigma_lambda = inverse_depth_sigma(0.2, kVisualFocal, 0.075);
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
-    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda, 1.5, Depth3dCovariance::kPaper);
+    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kVisualFocal, sigma_lambda, 1.5, Depth3dCovariance::kPaper);
     Vec3 r;
     ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
     EXPECT_LT(r.norm(), 1e-8);
@@ -106,7 +106,7 @@ TEST(Depth3dFactor, ZeroAtTruthAndPaperResidualOffIt) {
     ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
     // r = Sigma^-1/2 [X - X^, Y - Y^, 1/Z - 1/Z^], sigma_x = sigma_y = Z 1.5 / f.
     const Vec3 P = point_in_target(v);
-    const double sxy = v.z_target * 1.5 / kFocal;
+    const double sxy = v.z_target * 1.5 / kVisualFocal;
     const Vec3 expected((v.m_target.x() * v.z_target - P.x()) / sxy, (v.m_target.y() * v.z_target - P.y()) / sxy,
                         (1.0 / v.z_target - 1.0 / P.z()) / sigma_lambda);
     EXPECT_LT((r - expected).norm(), 1e-9 * (1.0 + expected.norm()));
@@ -115,17 +115,17 @@ TEST(Depth3dFactor, ZeroAtTruthAndPaperResidualOffIt) {
 
 TEST(Depth3dFactor, FullCovarianceResidualOffTruth) {
   std::mt19937_64 rng(23);
-  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
+  const double sigma_lambda = inverse_depth_sigma(0.2, kVisualFocal, 0.075);
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
-    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kFocal, sigma_lambda);  // kFull by default
+    const Depth3dFactor f(v.m_anchor, v.m_target, v.z_target, kVisualFocal, sigma_lambda);  // kFull by default
     perturb(v, rng);
     Vec3 r;
     ASSERT_TRUE(f.Evaluate(blocks(v).data(), r.data(), nullptr));
     // The error of (x, y, 1/Z) that maps to the point error: x = X / Z^ ... to first order
     // [dX / Z + x Z d(1/Z), dY / Z + y Z d(1/Z), d(1/Z)], whitened by sigma / f and sigma_lambda.
     const Vec3 P = point_in_target(v);
-    const double Z = v.z_target, x = v.m_target.x(), y = v.m_target.y(), sn = 1.5 / kFocal;
+    const double Z = v.z_target, x = v.m_target.x(), y = v.m_target.y(), sn = 1.5 / kVisualFocal;
     const Vec3 d(x * Z - P.x(), y * Z - P.y(), 1.0 / Z - 1.0 / P.z());
     const Vec3 expected((d.x() / Z + x * Z * d.z()) / sn, (d.y() / Z + y * Z * d.z()) / sn, d.z() / sigma_lambda);
     EXPECT_LT((r - expected).norm(), 1e-9 * (1.0 + expected.norm()));
@@ -171,21 +171,21 @@ TEST(Depth3dFactor, FullCovarianceWhitensSimulatedDepthNoise) {
 TEST(Depth3dFactor, AnalyticJacobiansMatchNumericOnTheManifold) {
   std::mt19937_64 rng(22);
   const PoseManifold pm;
-  const double sigma_lambda = inverse_depth_sigma(0.2, kFocal, 0.075);
+  const double sigma_lambda = inverse_depth_sigma(0.2, kVisualFocal, 0.075);
   for (int trial = 0; trial < 20; ++trial) {
     TwoViews v = two_views(rng);
     const TwoViews measured = v;
     perturb(v, rng);
     for (const auto model : {Depth3dCovariance::kFull, Depth3dCovariance::kPaper}) {
-      const Depth3dFactor f(measured.m_anchor, measured.m_target, measured.z_target, kFocal, sigma_lambda, 1.5, model);
+      const Depth3dFactor f(measured.m_anchor, measured.m_target, measured.z_target, kVisualFocal, sigma_lambda, 1.5, model);
       EXPECT_TRUE(jacobians_match(f, blocks(v), {&pm, &pm, &pm, nullptr})) << "trial " << trial;
     }
   }
 }
 
 TEST(Depth3dFactor, RejectsBadInput) {
-  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 0.0, kFocal, 0.01), Error);
-  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 2.0, kFocal, 0.0), ConfigError);
+  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 0.0, kVisualFocal, 0.01), Error);
+  EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 2.0, kVisualFocal, 0.0), ConfigError);
   EXPECT_THROW(Depth3dFactor({0, 0}, {0, 0}, 2.0, -1.0, 0.01), ConfigError);
 }
 

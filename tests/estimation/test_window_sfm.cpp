@@ -15,7 +15,7 @@
 namespace navaid::estimation {
 namespace {
 
-constexpr double kFocal = 460;
+constexpr double kSfmFocal = 460;
 
 struct Scene {
   std::vector<SE3> T_W_C;            // per keyframe
@@ -59,7 +59,7 @@ Scene make_scene(const SceneSpec& s) {
       o.track_id = id;
       o.m = X.head<2>() / X.z();
       if (std::abs(o.m.x()) > 0.7 || std::abs(o.m.y()) > 0.55) continue;
-      o.m += draw_vector<2>([&] { return n01(rng); }) * (s.pixel_sigma / kFocal);
+      o.m += draw_vector<2>([&] { return n01(rng); }) * (s.pixel_sigma / kSfmFocal);
       if (X.z() < s.depth_max_m && u01(rng) < s.depth_fraction)
         o.depth_m = 1.0 / (1.0 / X.z() + s.inverse_depth_sigma * n01(rng));
       if (u01(rng) < s.outlier_fraction) o.m = draw_vector<2>([&] { return um(rng); });

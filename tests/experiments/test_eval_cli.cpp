@@ -19,7 +19,7 @@ using navaid::testing::ScratchDir;
 
 namespace {
 
-std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string quoted_path(const fs::path& p) { return "'" + p.string() + "'"; }
 
 double printed_ate(const std::string& output) {
   std::smatch m;
@@ -38,13 +38,13 @@ TEST(EvalCli, AgreesWithRpgAndWritesJsonCsvAndFigure) {
   // Reference (SOURCE.md): matched=269 posyaw=0.0198 se3=0.0193 sim3=0.0120.
   const std::pair<const char*, double> modes[] = {{"posyaw", 0.0198}, {"se3", 0.0193}, {"sim3", 0.0120}};
   for (const auto& [mode, expected] : modes) {
-    const CliRun run = navaid_cli("eval --est " + quote(est) + " --gt " + quote(gt) + " --align " + mode);
+    const CliRun run = navaid_cli("eval --est " + quoted_path(est) + " --gt " + quoted_path(gt) + " --align " + mode);
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NEAR(printed_ate(run.output), expected, 1e-3) << mode << "\n" << run.output;
   }
   ScratchDir out("eval-cli");
-  const CliRun run = navaid_cli("eval --est " + quote(est) + " --gt " + quote(gt) + " --align sim3 --rpe-lengths 1,2 --out " +
-                                quote(out.path()));
+  const CliRun run = navaid_cli("eval --est " + quoted_path(est) + " --gt " + quoted_path(gt) + " --align sim3 --rpe-lengths 1,2 --out " +
+                                quoted_path(out.path()));
   ASSERT_EQ(run.status, 0) << run.output;
   const auto j = nlohmann::json::parse(navaid::testing::read_text(out / "eval.json"));
   EXPECT_EQ(j["association"]["matched"], 269);
@@ -70,7 +70,7 @@ TEST(EvalCli, GroundTruthFromARecordingFolder) {
   navaid::io::write_navaid_recording(rec, dir / "rec");
   const navaid::SE3 T(navaid::quat_from_rpy(0, 0, 0.8), navaid::Vec3(3, -1, 0.2));
   navaid::io::write_tum_trajectory(dir / "est.tum", navaid::testing::in_frame(gt, T));
-  const std::string args = "eval --est " + quote(dir / "est.tum") + " --gt " + quote(dir / "rec");
+  const std::string args = "eval --est " + quoted_path(dir / "est.tum") + " --gt " + quoted_path(dir / "rec");
   const CliRun run = navaid_cli(args);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_LT(printed_ate(run.output), 1e-5) << run.output;
@@ -86,22 +86,22 @@ TEST(EvalCli, BadInputFailsWithAClearMessage) {
   for (auto& p : late) p.t += 3'600'000'000'000;  // an hour later: nothing overlaps
   navaid::io::write_tum_trajectory(dir / "late.tum", late);
   navaid::testing::write_text(dir / "garbage.tum", "1.0 2.0 3.0\n");
-  const std::string gt_arg = " --gt " + quote(dir / "gt.tum");
+  const std::string gt_arg = " --gt " + quoted_path(dir / "gt.tum");
 
-  CliRun run = navaid_cli("eval --est " + quote(dir / "late.tum") + gt_arg);
+  CliRun run = navaid_cli("eval --est " + quoted_path(dir / "late.tum") + gt_arg);
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("no estimated pose is within 0.020000000 s"), std::string::npos) << run.output;
-  run = navaid_cli("eval --est " + quote(dir / "garbage.tum") + gt_arg);
+  run = navaid_cli("eval --est " + quoted_path(dir / "garbage.tum") + gt_arg);
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("garbage.tum:1"), std::string::npos) << run.output;
-  run = navaid_cli("eval --est " + quote(dir / "gt.tum") + gt_arg + " --align-frames 50");
+  run = navaid_cli("eval --est " + quoted_path(dir / "gt.tum") + gt_arg + " --align-frames 50");
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("only 20 poses are matched"), std::string::npos) << run.output;
-  run = navaid_cli("eval --est " + quote(dir / "gt.tum") + gt_arg + " --tolerance -1");
+  run = navaid_cli("eval --est " + quoted_path(dir / "gt.tum") + gt_arg + " --tolerance -1");
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("--tolerance"), std::string::npos) << run.output;
-  EXPECT_NE(navaid_cli("eval --est " + quote(dir / "gt.tum") + gt_arg + " --align affine").status, 0);
-  EXPECT_NE(navaid_cli("eval --est " + quote(dir / "missing.tum") + gt_arg).status, 0);
+  EXPECT_NE(navaid_cli("eval --est " + quoted_path(dir / "gt.tum") + gt_arg + " --align affine").status, 0);
+  EXPECT_NE(navaid_cli("eval --est " + quoted_path(dir / "missing.tum") + gt_arg).status, 0);
   EXPECT_NE(navaid_cli("eval" + gt_arg).status, 0);
 }
 
@@ -120,8 +120,8 @@ TEST(EvalCli, EvoFlags) {
   navaid::io::write_tum_trajectory(dir / "gt.tum", gt);
   navaid::io::write_tum_trajectory(dir / "est.tum", est);
   const auto eval = [&](const std::string& flags, const std::string& name) {
-    const CliRun run = navaid_cli("eval --est " + quote(dir / "est.tum") + " --gt " + quote(dir / "gt.tum") + " " +
-                                  flags + " --no-plot --out " + quote(dir / name));
+    const CliRun run = navaid_cli("eval --est " + quoted_path(dir / "est.tum") + " --gt " + quoted_path(dir / "gt.tum") + " " +
+                                  flags + " --no-plot --out " + quoted_path(dir / name));
     EXPECT_EQ(run.status, 0) << flags << "\n" << run.output;
     return nlohmann::json::parse(navaid::testing::read_text(dir / name / "eval.json"));
   };
@@ -151,7 +151,7 @@ TEST(EvalCli, EvoFlags) {
   EXPECT_EQ(eval("-a --n_to_align 5", "n")["alignment"]["frames"], 5);
 
   const auto fails = [&](const std::string& flags, const std::string& says) {
-    const CliRun run = navaid_cli("eval --est " + quote(dir / "est.tum") + " --gt " + quote(dir / "gt.tum") + " " + flags);
+    const CliRun run = navaid_cli("eval --est " + quoted_path(dir / "est.tum") + " --gt " + quoted_path(dir / "gt.tum") + " " + flags);
     EXPECT_NE(run.status, 0) << flags;
     EXPECT_NE(run.output.find(says), std::string::npos) << flags << "\n" << run.output;
   };

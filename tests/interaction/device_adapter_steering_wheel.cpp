@@ -17,7 +17,7 @@ using testing::cue_of;
 using testing::walking_cue;
 using W = SteeringWheelAdapter;
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
 
 Cue steering_cue(CueKind kind, double steering_rad, double direction_rad = 0.1) {
   Cue c = walking_cue(kind, direction_rad);
@@ -59,14 +59,14 @@ TEST(DeviceAdapterSteeringWheel, SteeringIsClampedToTheMaximumAngle) {
   EXPECT_EQ(level_of(wheel.pattern(steering_cue(CueKind::kTurn, -3.0))), -785);
   SteeringWheelConfig c;
   c.max_steering_deg = 20.0;
-  EXPECT_EQ(level_of(W(c).pattern(steering_cue(CueKind::kTurn, 0.5))), static_cast<int>(std::lround(20 * kDeg * 1000)));
+  EXPECT_EQ(level_of(W(c).pattern(steering_cue(CueKind::kTurn, 0.5))), static_cast<int>(std::lround(20 * kRadPerDeg * 1000)));
   EXPECT_EQ(level_of(W(c).pattern(steering_cue(CueKind::kTurn, 0.2))), 200);  // inside: unchanged
 }
 
 TEST(DeviceAdapterSteeringWheel, WithoutSteeringTheDirectionIsUsedClamped) {
   const W wheel;
   EXPECT_EQ(level_of(wheel.pattern(walking_cue(CueKind::kVeer, 0.25))), 250);
-  EXPECT_EQ(level_of(wheel.pattern(walking_cue(CueKind::kTurn, -120 * kDeg))), -785);
+  EXPECT_EQ(level_of(wheel.pattern(walking_cue(CueKind::kTurn, -120 * kRadPerDeg))), -785);
   // Neither, or not finite: nothing to steer by.
   EXPECT_FALSE(wheel.pattern(cue_of(CueKind::kTurn)));
   EXPECT_FALSE(wheel.pattern(steering_cue(CueKind::kTurn, std::nan(""))));

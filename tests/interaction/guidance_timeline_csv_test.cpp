@@ -65,7 +65,7 @@ TEST(GuidanceTimelineCsv, WriteThenReadGivesTheSameEntries) {
   const std::vector<GuidanceTimelineEntry> entries = {
       SystemEvent{0, SystemEventKind::kEstimatorMode, "RGBD-VIO"}, c,
       SystemEvent{seconds_to_ns(2.0), SystemEventKind::kRouteInstruction, "49;left;Main \"High\" Street, north"}};
-  const testing::ScratchDir dir("guidance_timeline");
+  const navaid::testing::ScratchDir dir("guidance_timeline");
   const std::filesystem::path file = dir / "timeline.csv";
   write_guidance_timeline_csv(file, entries);
   const auto back = read_guidance_timeline_csv(file);

@@ -17,6 +17,7 @@
 #include "navaid/io/navaid_recording.hpp"
 #include "navaid/io/nmea.hpp"
 #include "navaid/io/tum_trajectory.hpp"
+#include "fixtures/fixture_util.hpp"
 #include "test_support.hpp"
 
 namespace navaid::io {
@@ -24,6 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using navaid::testing::expect_throw;
+using navaid::testing::datasets::replace_text;
 using navaid::testing::read_text;
 using navaid::testing::ScratchDir;
 using navaid::testing::write_text;
@@ -319,7 +321,7 @@ void expect_same_samples(const Recording& a, const Recording& b) {
 }
 
 // Replaces 1-based line `line` of `file` (or appends when line is past the end).
-void replace_line(const fs::path& file, std::size_t line, const std::string& text) {
+void set_line(const fs::path& file, std::size_t line, const std::string& text) {
   std::istringstream in(read_text(file));
   std::string out, current;
   std::size_t n = 0;
@@ -346,14 +348,6 @@ void remove_line_containing(const fs::path& file, const std::string& needle) {
   }
   ASSERT_TRUE(removed) << needle;
   write_text(file, out);
-}
-
-void replace_text(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read_text(file);
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  write_text(file, text);
 }
 
 class NavaidRecordingTest : public ::testing::Test {
@@ -513,60 +507,60 @@ TEST_F(NavaidRecordingTest, HandWrittenFourByFourTransformIsAccepted) {
 
 TEST_F(NavaidRecordingTest, CsvWrongFieldCount) {
   const fs::path bad = copy("fields");
-  replace_line(bad / "imu.csv", 4, "1403715273272142976,0.1,0.2,0.3,1,2");
+  set_line(bad / "imu.csv", 4, "1403715273272142976,0.1,0.2,0.3,1,2");
   expect_io_error([&] { read_navaid_recording(bad); }, "imu.csv", 4, "expected 7 fields, found 6");
 }
 
 TEST_F(NavaidRecordingTest, CsvNonNumericField) {
   const fs::path bad = copy("text");
-  replace_line(bad / "mag.csv", 3, "1403715273282142979,1e-5,abc,2e-5");
+  set_line(bad / "mag.csv", 3, "1403715273282142979,1e-5,abc,2e-5");
   expect_io_error([&] { read_navaid_recording(bad); }, "mag.csv", 3, "column 'my': 'abc' is not a number");
 }
 
 TEST_F(NavaidRecordingTest, CsvNonFiniteField) {
   const fs::path bad = copy("nan");
-  replace_line(bad / "imu.csv", 2, "1403715273262142976,nan,0,0,0,0,9.8");
+  set_line(bad / "imu.csv", 2, "1403715273262142976,nan,0,0,0,0,9.8");
   expect_io_error([&] { read_navaid_recording(bad); }, "imu.csv", 2, "column 'gx': 'nan' is not a finite number");
-  replace_line(bad / "imu.csv", 2, "1403715273262142976,0,0,0,0,0,inf");
+  set_line(bad / "imu.csv", 2, "1403715273262142976,0,0,0,0,0,inf");
   expect_io_error([&] { read_navaid_recording(bad); }, "imu.csv", 2, "column 'az'");
 }
 
 TEST_F(NavaidRecordingTest, CsvTimeNotIncreasing) {
   const fs::path bad = copy("time");
-  replace_line(bad / "groundtruth.csv", 5, "1403715273262142976,0,0,0,1,0,0,0,,,,,,,,,");
+  set_line(bad / "groundtruth.csv", 5, "1403715273262142976,0,0,0,1,0,0,0,,,,,,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "groundtruth.csv", 5, "decreasing timestamp");
-  replace_line(bad / "groundtruth.csv", 5, "1403715273282142976,0,0,0,1,0,0,0,,,,,,,,,");
+  set_line(bad / "groundtruth.csv", 5, "1403715273282142976,0,0,0,1,0,0,0,,,,,,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "groundtruth.csv", 5, "duplicate timestamp");
 }
 
 TEST_F(NavaidRecordingTest, CsvBadTimestamp) {
   const fs::path bad = copy("t");
-  replace_line(bad / "gps.csv", 2, "1403715273.262,46.5,6.6,372,48,3,1,7,0.9,1,0,0,1,0,1");
+  set_line(bad / "gps.csv", 2, "1403715273.262,46.5,6.6,372,48,3,1,7,0.9,1,0,0,1,0,1");
   expect_io_error([&] { read_navaid_recording(bad); }, "gps.csv", 2, "not an integer time in nanoseconds");
 }
 
 TEST_F(NavaidRecordingTest, CsvWrongHeader) {
   const fs::path bad = copy("header");
-  replace_line(bad / "gps.csv", 1, "t_ns,lat_rad,lon_rad,alt,geoid_sep,mode,quality,satellites,hdop,cov_ee,cov_en,"
+  set_line(bad / "gps.csv", 1, "t_ns,lat_rad,lon_rad,alt,geoid_sep,mode,quality,satellites,hdop,cov_ee,cov_en,"
                                    "cov_eu,cov_nn,cov_nu,cov_uu");
   expect_io_error([&] { read_navaid_recording(bad); }, "gps.csv", 1, "header must be 't_ns,lat,lon,alt,");
 }
 
 TEST_F(NavaidRecordingTest, GpsLatitudeOutOfRange) {
   const fs::path bad = copy("lat");
-  replace_line(bad / "gps.csv", 3, "1403715273462142983,146.5,6.6,372,48,3,1,7,0.9,1,0,0,1,0,1");
+  set_line(bad / "gps.csv", 3, "1403715273462142983,146.5,6.6,372,48,3,1,7,0.9,1,0,0,1,0,1");
   expect_io_error([&] { read_navaid_recording(bad); }, "gps.csv", 3, "column 'lat': 146.5 is outside [-90, 90]");
 }
 
 TEST_F(NavaidRecordingTest, PartialOptionalGroup) {
   const fs::path bad = copy("partial");
-  replace_line(bad / "groundtruth.csv", 2, "1403715273262142976,0,0,0,1,0,0,0,1,,,,,,,,");
+  set_line(bad / "groundtruth.csv", 2, "1403715273262142976,0,0,0,1,0,0,0,1,,,,,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "groundtruth.csv", 2, "must be all set or all empty");
 }
 
 TEST_F(NavaidRecordingTest, NonUnitQuaternion) {
   const fs::path bad = copy("quat");
-  replace_line(bad / "groundtruth.csv", 2, "1403715273262142976,0,0,0,1,0.1,0,0,,,,,,,,,");
+  set_line(bad / "groundtruth.csv", 2, "1403715273262142976,0,0,0,1,0.1,0,0,,,,,,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "groundtruth.csv", 2, "norm");
 }
 
@@ -578,13 +572,13 @@ TEST_F(NavaidRecordingTest, MissingFrameImageNamesFramesCsvLine) {
 
 TEST_F(NavaidRecordingTest, FramePathEscapingTheFolder) {
   const fs::path bad = copy("escape");
-  replace_line(bad / "frames.csv", 2, "1403715273262142976,cam0,0,../good/rgb/cam0_1403715273262142976.png,,,");
+  set_line(bad / "frames.csv", 2, "1403715273262142976,cam0,0,../good/rgb/cam0_1403715273262142976.png,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "frames.csv", 2, "no '..'");
 }
 
 TEST_F(NavaidRecordingTest, FramesOutOfOrder) {
   const fs::path bad = copy("frames-order");
-  replace_line(bad / "frames.csv", 4, "1403715273262142975,cam0,1,,,,");
+  set_line(bad / "frames.csv", 4, "1403715273262142975,cam0,1,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "frames.csv", 4, "time order");
 }
 
@@ -610,61 +604,61 @@ TEST_F(NavaidRecordingTest, UnlistedFileIsIgnoredWithAWarning) {
 // 1000000007), 14..25 (kT0, cam1), 26.. (kT0 + 33 ms, cam0).
 TEST_F(NavaidRecordingTest, FeaturesWrongHeader) {
   const fs::path bad = copy("f-header");
-  replace_line(bad / "features.csv", 1, "t_ns,camera,track_id,u,v,depth_mm");
+  set_line(bad / "features.csv", 1, "t_ns,camera,track_id,u,v,depth_mm");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 1, "header must be 't_ns,camera,track_id");
 }
 
 TEST_F(NavaidRecordingTest, FeaturesDuplicateTrackIdInAFrame) {
   const fs::path bad = copy("f-dup");
-  replace_line(bad / "features.csv", 3, "1403715273262142976,cam0,5000000035,10,20,");
+  set_line(bad / "features.csv", 3, "1403715273262142976,cam0,5000000035,10,20,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 3,
                   "column 'track_id': 5000000035 after 5000000035 in the same frame");
 }
 
 TEST_F(NavaidRecordingTest, FeaturesTimeOrder) {
   const fs::path bad = copy("f-time");
-  replace_line(bad / "features.csv", 26, "1403715273262142975,cam0,6000000042,10,20,");
+  set_line(bad / "features.csv", 26, "1403715273262142975,cam0,6000000042,10,20,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 26, "rows must be in time order");
   // A second frame of the same camera at the same time (rows of a frame split apart).
-  replace_line(bad / "features.csv", 26, "1403715273262142976,cam0,6000000042,10,20,");
+  set_line(bad / "features.csv", 26, "1403715273262142976,cam0,6000000042,10,20,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 26, "camera 'cam0' has a second frame");
 }
 
 TEST_F(NavaidRecordingTest, FeaturesBadNumbers) {
   const fs::path bad = copy("f-numbers");
-  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,far");
+  set_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,far");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'depth': 'far' is not a number");
-  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,nan,20,");
+  set_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,nan,20,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'u': 'nan' is not a finite number");
-  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,-1.5");
+  set_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,-1.5");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'depth': -1.5 must be positive");
-  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,0");
+  set_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,20,0");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'depth': 0 must be positive");
-  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,-5,10,20,");
+  set_line(bad / "features.csv", 2, "1403715273262142976,cam0,-5,10,20,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'track_id': -5 is outside");
-  replace_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,,");
+  set_line(bad / "features.csv", 2, "1403715273262142976,cam0,5000000035,10,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 2, "column 'v' is empty");
 }
 
 TEST_F(NavaidRecordingTest, FeaturesEmptyFrameMarkerMustBeAlone) {
   const fs::path bad = copy("f-marker");
-  replace_line(bad / "features.csv", 3, "1403715273262142976,cam0,,,,");
+  set_line(bad / "features.csv", 3, "1403715273262142976,cam0,,,,");
   expect_io_error([&] { read_navaid_recording(bad); }, "features.csv", 3, "must be the only row of its frame");
 }
 
 TEST_F(NavaidRecordingTest, LandmarksMustBeSortedAndWellFormed) {
   const fs::path bad = copy("l-order");
-  replace_line(bad / "landmarks.csv", 3, "5000000035,1,2,3");
+  set_line(bad / "landmarks.csv", 3, "5000000035,1,2,3");
   expect_io_error([&] { read_navaid_recording(bad); }, "landmarks.csv", 3, "must be strictly increasing");
-  replace_line(bad / "landmarks.csv", 3, "6000000042,1,inf,3");
+  set_line(bad / "landmarks.csv", 3, "6000000042,1,inf,3");
   expect_io_error([&] { read_navaid_recording(bad); }, "landmarks.csv", 3, "column 'y'");
-  replace_line(bad / "landmarks.csv", 1, "t_ns,track_id,x,y,z");
+  set_line(bad / "landmarks.csv", 1, "t_ns,track_id,x,y,z");
   expect_io_error([&] { read_navaid_recording(bad); }, "landmarks.csv", 1, "header must be 'track_id,x,y,z'");
 }
 
 TEST_F(NavaidRecordingTest, ConfidenceNeedsLabels) {
   const fs::path bad = copy("c-labels");
-  replace_line(bad / "frames.csv", 2,
+  set_line(bad / "frames.csv", 2,
                "1403715273262142976,cam0,0,,,,confidence/cam0_1403715273262142976.png");
   expect_io_error([&] { read_navaid_recording(bad); }, "frames.csv", 2, "a label confidence needs labels");
 }
@@ -833,7 +827,7 @@ TEST_F(NavaidRecordingTest, BadCalibrationValues) {
 
 TEST_F(NavaidRecordingTest, InvalidYamlSyntaxNamesTheLine) {
   const fs::path bad = copy("syntax");
-  replace_line(bad / "calibration.yaml", 4, "    resolution: [8, 6");
+  set_line(bad / "calibration.yaml", 4, "    resolution: [8, 6");
   // yaml-cpp reports where it noticed the unclosed list: the next line.
   expect_io_error([&] { read_navaid_recording(bad); }, "calibration.yaml", 5, "invalid YAML");
 }

@@ -12,7 +12,7 @@
 namespace navaid::mapping {
 namespace {
 
-std::filesystem::path pcl_cloud(const std::string& name) { return testing::shared_data_dir() / "pcl-clouds" / name; }
+std::filesystem::path pcd_fixture(const std::string& name) { return testing::shared_data_dir() / "pcl-clouds" / name; }
 
 std::size_t count_finite(const PcdCloud& c) {
   return static_cast<std::size_t>(std::count_if(c.points.begin(), c.points.end(), [](const Eigen::Vector3f& p) { return p.allFinite(); }));
@@ -28,7 +28,7 @@ void expect_io_error_naming(const std::filesystem::path& file) {
 
 TEST(PcdCloud, OrganizedKinectCloudKeepsItsLayout) {
   NAVAID_REQUIRE_SHARED_DATA();
-  const PcdCloud c = read_pcd_cloud(pcl_cloud("five_people.pcd"));
+  const PcdCloud c = read_pcd_cloud(pcd_fixture("five_people.pcd"));
   EXPECT_EQ(c.width, 640u);
   EXPECT_EQ(c.height, 480u);
   EXPECT_TRUE(c.organized());
@@ -51,7 +51,7 @@ TEST(PcdCloud, OrganizedKinectCloudKeepsItsLayout) {
 
 TEST(PcdCloud, UnorganizedAsciiCloud) {
   NAVAID_REQUIRE_SHARED_DATA();
-  const PcdCloud c = read_pcd_cloud(pcl_cloud("sac_plane_test.pcd"));
+  const PcdCloud c = read_pcd_cloud(pcd_fixture("sac_plane_test.pcd"));
   EXPECT_EQ(c.points.size(), 3283u);
   EXPECT_EQ(c.height, 1u);
   EXPECT_FALSE(c.organized());
@@ -60,7 +60,7 @@ TEST(PcdCloud, UnorganizedAsciiCloud) {
 
 TEST(PcdCloud, CloudWithoutCoordinatesIsAnIoError) {
   NAVAID_REQUIRE_SHARED_DATA();
-  expect_io_error_naming(pcl_cloud("stereo_left.pcd"));  // rgba only
+  expect_io_error_naming(pcd_fixture("stereo_left.pcd"));  // rgba only
 }
 
 TEST(PcdCloud, MissingTruncatedAndGarbageFilesAreIoErrors) {
@@ -81,7 +81,7 @@ TEST(PcdCloud, MissingTruncatedAndGarbageFilesAreIoErrors) {
 
   if (!testing::have_shared_data()) return;
   // The first half of a real binary_compressed cloud.
-  const std::string bytes = testing::read_text(pcl_cloud("five_people.pcd"));
+  const std::string bytes = testing::read_text(pcd_fixture("five_people.pcd"));
   ASSERT_GT(bytes.size(), 1000u);
   testing::write_text(dir / "truncated.pcd", bytes.substr(0, bytes.size() / 2));
   expect_io_error_naming(dir / "truncated.pcd");

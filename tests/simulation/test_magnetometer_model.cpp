@@ -13,7 +13,6 @@
 namespace navaid::simulation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 SE3 yaw_pose(double yaw, const Vec3& t) { return SE3(quat_from_rpy(0.0, 0.0, yaw), t); }
 
@@ -28,7 +27,7 @@ MagnetometerModelConfig noiseless() {
 TEST(MagnetometerModel, NoiselessNormIsPreserved) {
   MagnetometerModel m(noiseless());
   std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> angle(-kPi, kPi);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
   const double norm = m.config().field_enu_t.norm();
   for (int k = 0; k < 100; ++k) {
     const SE3 T_ENU_W = yaw_pose(angle(rng), Vec3(1.0, 2.0, 3.0));
@@ -46,13 +45,13 @@ TEST(MagnetometerModel, HeadingFromHorizontalFieldMatchesYaw) {
     for (double yaw_w_b : {0.0, 1.0, 2.5, -3.0, -0.3}) {
       const MagSample s = m.measure(0, yaw_pose(yaw_enu_w, Vec3::Zero()), yaw_pose(yaw_w_b, Vec3(1.0, 0.0, 0.0)));
       // Level body: north is at angle pi/2 - yaw from the body x axis, counter-clockwise.
-      const double yaw = kPi / 2.0 - std::atan2(s.field.y(), s.field.x());
+      const double yaw = M_PI / 2.0 - std::atan2(s.field.y(), s.field.x());
       EXPECT_NEAR(wrap(yaw - (yaw_enu_w + yaw_w_b)), 0.0, 1e-12) << yaw_enu_w << " " << yaw_w_b;
       EXPECT_NEAR(s.field.z(), m.config().field_enu_t.z(), 1e-18);  // up stays up
     }
   }
   // Facing north (yaw pi/2), the field is straight ahead along x.
-  const MagSample north = m.measure(0, SE3::identity(), yaw_pose(kPi / 2.0, Vec3::Zero()));
+  const MagSample north = m.measure(0, SE3::identity(), yaw_pose(M_PI / 2.0, Vec3::Zero()));
   EXPECT_NEAR(north.field.x(), 20e-6, 1e-15);
   EXPECT_NEAR(north.field.y(), 0.0, 1e-15);
 }

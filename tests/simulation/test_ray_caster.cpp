@@ -10,7 +10,6 @@
 namespace navaid::simulation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Vec3 random_unit(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
@@ -96,7 +95,7 @@ TEST(RayCaster, EllipsoidDistancesMatchAnalyticWithinTessellation) {
   const int n = 128;
   const RayCaster rc(w, Tessellation{24, 2 * n, n});
   // Chordal error of the inscribed tessellation is <= r_max (1 - cos(pi / n)) per direction.
-  const double tol = 2.0 * e.radii.maxCoeff() * (1.0 - std::cos(kPi / n)) + 1e-9;
+  const double tol = 2.0 * e.radii.maxCoeff() * (1.0 - std::cos(M_PI / n)) + 1e-9;
   std::mt19937 rng(3);
   for (int i = 0; i < 300; ++i) {
     const Vec3 o = e.T_W_O.t + 5.0 * random_unit(rng);
@@ -119,7 +118,7 @@ TEST(RayCaster, EllipsoidDistancesMatchAnalyticWithinTessellation) {
   const RayCaster rs(ws, Tessellation{24, 2 * n, n});
   const auto h = rs.cast(Vec3(0, 0, 1), Vec3::UnitX());
   ASSERT_TRUE(h.has_value());
-  EXPECT_NEAR(h->distance, 2.5, 0.5 * (1.0 - std::cos(kPi / n)) + 1e-9);
+  EXPECT_NEAR(h->distance, 2.5, 0.5 * (1.0 - std::cos(M_PI / n)) + 1e-9);
 }
 
 TEST(RayCaster, BatchMatchesSingleAndReportsPrimitive) {

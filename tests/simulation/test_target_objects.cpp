@@ -23,7 +23,7 @@ namespace navaid::simulation {
 namespace {
 
 // Camera at `eye` looking at `target`, image x right, y down, with W z up.
-SE3 look_at(const Vec3& eye, const Vec3& target) {
+SE3 camera_looking_at(const Vec3& eye, const Vec3& target) {
   const Vec3 z = (target - eye).normalized();
   Vec3 x = z.cross(Vec3::UnitZ());
   x.normalize();
@@ -64,7 +64,7 @@ TEST(ImageTexture, PictureIsUprightAndUnmirroredFromThePositiveSide) {
   const auto cam = make_camera_model(pinhole(101, 101, 100.0));
   RenderOptions o;
   o.ambient = 1.0;  // no shading: intensity = 255 x reflectance
-  const RenderedFrame f = render(w, *cam, look_at(Vec3(0.0, 0.0, 1.0), Vec3(3.0, 0.0, 1.0)), o);
+  const RenderedFrame f = render(w, *cam, camera_looking_at(Vec3(0.0, 0.0, 1.0), Vec3(3.0, 0.0, 1.0)), o);
   // The patch spans +-0.5 m at 3 m: +-16.7 px around the centre (50, 50). Top-left quarter dark.
   EXPECT_LT(f.intensity.at(42, 42), 30);
   EXPECT_GT(f.intensity.at(58, 42), 230);
@@ -104,7 +104,7 @@ TEST(LabWalkTarget, LabelImageAndPrintedCodeBitsInARenderedFrame) {
   const auto cam = make_camera_model(pinhole(640, 480, 460.0));
   // From 1.8 m in front of the tag, 25 cm higher, looking at it.
   const Vec3 normal = -t.T_W_tag.rotation().col(2);
-  const SE3 T_W_C = look_at(t.T_W_tag.t + 1.8 * normal + Vec3(0, 0, 0.25), t.T_W_tag.t);
+  const SE3 T_W_C = camera_looking_at(t.T_W_tag.t + 1.8 * normal + Vec3(0, 0, 0.25), t.T_W_tag.t);
   const RenderedFrame f = render(rc, *cam, T_W_C);
   const SE3 T_C_W = T_W_C.inverse();
   const auto centre = cam->project(T_C_W * t.T_W_tag.t);
