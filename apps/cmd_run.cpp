@@ -18,6 +18,7 @@ namespace {
 struct RunArgs {
   std::filesystem::path recording, out, config_file;
   std::string device;
+  std::filesystem::path voice;
   std::vector<std::string> overrides;
   bool realtime = false;
   runtime::RealtimeOptions realtime_options;
@@ -33,6 +34,7 @@ void run(const RunArgs& a) {
     throw UsageError("give --device NAME (a preset) or --config FILE, not both; change a preset's keys with --set");
   if (a.realtime) runtime::validate(a.realtime_options);
   if (a.device_queue == 0) throw UsageError("--device-queue must be at least 1");
+  if (!a.voice.empty() && a.device.empty() && a.config_file.empty()) throw UsageError("--voice needs a device (--device)");
   experiments::RecordingRunOptions o;
   o.recording = a.recording;
   o.out = a.out;
@@ -41,6 +43,7 @@ void run(const RunArgs& a) {
   o.realtime = a.realtime;
   o.realtime_options = a.realtime_options;
   o.device_queue = a.device_queue;
+  o.voice = a.voice;
   o.plot = !a.no_plot;
   o.bag = a.bag.conversion();
   o.bag_options_given = a.bag.given();
@@ -61,6 +64,11 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--device", a->device,
                   "Full-device run with a preset of runtime/devices (elabrador, smart-cane, augmented-cane, "
                   "w-roma): mapping, guidance, cues, speech, report.html (docs/full-device-runs.md)");
+  cmd->add_option("--voice", a->voice,
+                  "With --device: what the user says as the device runs, a guidance timeline of voice_command events "
+                  "(navaid listen's voice_event.csv; times in s from the recording's start): repeat, where am i, stop "
+                  "guidance, go to <place> (a route's landmark)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--device-queue", a->device_queue,
                   "With --device --realtime: estimates that may wait for the device thread (the oldest is dropped)")
       ->capture_default_str();

@@ -4,6 +4,7 @@
 
 #include "navaid/core/errors.hpp"
 #include "navaid/experiments/map_session.hpp"
+#include "navaid/interaction/guidance_timeline_csv.hpp"
 #include "navaid/io/targets_csv.hpp"
 #include "navaid/planning/apriltag_detector.hpp"
 #include "navaid/planning/path_guidance.hpp"
@@ -75,7 +76,10 @@ runtime::DeviceMission recording_mission(const DeviceSpec& spec, const Config& c
                                          const std::filesystem::path& recording_dir, const std::filesystem::path& out) {
   runtime::DeviceMission mission;
   switch (spec.guidance) {
-    case GuidanceKind::kRoute: mission.route = route_mission(spec, recording, recording_dir, out); break;
+    case GuidanceKind::kRoute:
+      mission.route = route_mission(spec, recording, recording_dir, out);
+      mission.place = runtime::street_places(*mission.route);
+      break;
     case GuidanceKind::kWalkingPath:
       if (!spec.goal_start_frame_m) mission.walking_goal = walking_goal(spec, recording, recording_dir);
       break;
@@ -85,6 +89,23 @@ runtime::DeviceMission recording_mission(const DeviceSpec& spec, const Config& c
     case GuidanceKind::kObstacleRumble: break;
   }
   return mission;
+}
+
+std::vector<TimedVoiceCommand> read_voice_commands(const std::filesystem::path& file) {
+  std::vector<TimedVoiceCommand> out;
+  for (const interaction::GuidanceTimelineEntry& entry : interaction::read_guidance_timeline_csv(file)) {
+    const auto* e = std::get_if<interaction::SystemEvent>(&entry);
+    if (!e || e->kind != interaction::SystemEventKind::kVoiceCommand)
+      throw IoError(file.string(), "holds an entry that is no voice_command (at t = " +
+                                       std::to_string(interaction::entry_time(entry)) + " ns)");
+    const auto command = interaction::voice_command_from_words(e->value);
+    if (!command)
+      throw IoError(file.string(), "'" + e->value + "' is no voice command (go to <place>, repeat, where am i, "
+                                   "stop guidance, not understood)");
+    out.emplace_back(e->t, *command);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return out;
 }
 
 }  // namespace navaid::experiments

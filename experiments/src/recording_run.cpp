@@ -30,6 +30,7 @@
 #include "navaid/io/tum_trajectory.hpp"
 #include "navaid/experiments/map_session.hpp"
 #include "navaid/experiments/progress.hpp"
+#include "navaid/experiments/recording_mission.hpp"
 #include "navaid/runtime/estimator_pipeline.hpp"
 #include "navaid/experiments/run_output_stream.hpp"
 #include "navaid/experiments/run_topview.hpp"
@@ -405,6 +406,9 @@ const ConfigKey<bool> kRealtimePrediction{"device.realtime_prediction", true,
 std::string run_recording_folder(const RecordingRunOptions& a) {
   if (a.realtime) validate(a.realtime_options);
   const Config& config = a.config;
+  if (!a.voice.empty() && !config.has("device.name")) throw UsageError("--voice needs a device (--device)");
+  const std::vector<TimedVoiceCommand> voice = a.voice.empty() ? std::vector<TimedVoiceCommand>{}
+                                                               : read_voice_commands(a.voice);
   const ConfigReads reads(config);  // config.yaml: the given keys and the defaults the run used
   estimation::EstimatorConfig est_config = estimation::read_estimator_config(config);
   const estimation::FrontendConfig frontend_config = estimation::read_frontend_config(config);
@@ -501,6 +505,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     device_options.device.predict_at_arrival = a.realtime && prediction;
     device_run = std::make_unique<DeviceRun>(*device, config, recording, a.recording, *cam, a.out, map_options,
                                              device_options);
+    for (const auto& [t, command] : voice) device_run->device().on_voice_command(stage_options.network_start + t, command);
     pipeline_input.on_estimate = [&](const StateEstimate& e, std::chrono::steady_clock::time_point arrival) {
       device_run->device().on_estimate(e, arrival);
     };

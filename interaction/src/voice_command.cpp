@@ -106,6 +106,24 @@ std::string describe(const VoiceCommand& command) {
   return "not understood";
 }
 
+std::optional<VoiceCommand> voice_command_from_words(std::string_view said) {
+  VoiceCommand c;
+  c.heard = std::string(said);
+  c.score = std::numeric_limits<double>::infinity();
+  constexpr std::string_view kGoTo = "go to ";
+  if (said.substr(0, kGoTo.size()) == kGoTo && said.size() > kGoTo.size()) {
+    c.kind = VoiceCommand::Kind::kGoTo;
+    c.place = std::string(said.substr(kGoTo.size()));
+    return c;
+  }
+  for (const auto kind : {VoiceCommand::Kind::kRepeat, VoiceCommand::Kind::kWhereAmI, VoiceCommand::Kind::kStopGuidance,
+                          VoiceCommand::Kind::kNotUnderstood}) {
+    c.kind = kind;
+    if (describe(c) == said) return c;
+  }
+  return std::nullopt;
+}
+
 struct VoiceCommandRecognizer::Impl {
   VoiceRecognizerConfig config;
   std::vector<std::string> places;             // as given (trimmed)

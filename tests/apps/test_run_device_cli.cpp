@@ -183,8 +183,18 @@ TEST_F(RunDeviceCli, ElabradorWaitsForTheGpsRegistrationAndSaysSo) {
   // Four seconds hold too few fixes for the GPS-map registration: the route is planned on the
   // scenario's streets, but no direction is given, and the user hears why.
   const fs::path out = path("elabrador");
-  const auto result = run("route1", "elabrador", out, " --no-plot --set device.speech=text");
+  // The user asks where they are, then for a place the streets do not name (navaid listen's
+  // voice_event.csv format; seconds from the recording's start).
+  const fs::path voice = path("elabrador-voice.csv");
+  write_text(voice, "t_s,type,action,reason,confidence,heading_deg,steering_deg,rumble,hand,event,value\n"
+                    "2.0,event,,,,,,,,voice_command,where am i\n"
+                    "3.0,event,,,,,,,,voice_command,go to nowhere in particular\n");
+  const auto result = run("route1", "elabrador", out, " --no-plot --set device.speech=text --voice '" + voice.string() + "'");
   ASSERT_EQ(result.status, 0) << result.output;
+  const std::string timeline = read_text(out / "guidance_timeline.csv");
+  EXPECT_NE(timeline.find("voice_command,where am i"), std::string::npos);
+  EXPECT_NE(timeline.find("voice_command,not understood"), std::string::npos);  // no such place: the route stays
+  EXPECT_EQ(read_text(out / "guidance_timeline.csv").find("go to nowhere"), std::string::npos);
   const auto s = summary(out);
   EXPECT_TRUE(fs::is_regular_file(out / "route" / "map.osm"));
   EXPECT_GT(s["guidance"]["route_length_m"].get<double>(), 200.0);
@@ -230,6 +240,16 @@ TEST_F(RunDeviceCli, ARecordingThatCannotServeTheDeviceIsNamed) {
                                "' --device smart-cane --config /dev/null --out '" + path("both").string() + "'");
   EXPECT_NE(both.status, 0);
   EXPECT_NE(both.output.find("not both"), std::string::npos) << both.output;
+  const auto voice_alone = navaid_cli("run --recording '" + recording("corridor").string() + "' --voice '" +
+                                      (recording("corridor") / "imu.csv").string() + "' --out '" + path("voice").string() + "'");
+  EXPECT_NE(voice_alone.status, 0);
+  EXPECT_NE(voice_alone.output.find("--voice needs a device"), std::string::npos) << voice_alone.output;
+  write_text(path("not-voice.csv"), "t_s,type,action,reason,confidence,heading_deg,steering_deg,rumble,hand,event,value\n"
+                                    "1.0,event,,,,,,,,voice_command,sing a song\n");
+  const auto not_voice = run("corridor", "smart-cane", path("not-voice"), " --voice '" + path("not-voice.csv").string() + "'");
+  EXPECT_NE(not_voice.status, 0);
+  EXPECT_NE(not_voice.output.find("not-voice.csv"), std::string::npos) << not_voice.output;
+  EXPECT_NE(not_voice.output.find("'sing a song' is no voice command"), std::string::npos) << not_voice.output;
   const auto bad_key = run("corridor", "smart-cane", path("bad-key"), " --set device.actuator=bell");
   EXPECT_NE(bad_key.status, 0);
   EXPECT_NE(bad_key.output.find("device.actuator"), std::string::npos) << bad_key.output;

@@ -146,5 +146,21 @@ TEST(VoiceCommandErrors, RecordingWithoutAnAudioServerIsAClearError) {
   EXPECT_THROW(record_from_device("", -1.0), Error);
 }
 
+TEST(VoiceCommandWords, EveryCommandRoundTripsThroughItsWords) {
+  for (const auto kind : {VoiceCommand::Kind::kGoTo, VoiceCommand::Kind::kRepeat, VoiceCommand::Kind::kWhereAmI,
+                          VoiceCommand::Kind::kStopGuidance, VoiceCommand::Kind::kNotUnderstood}) {
+    VoiceCommand c;
+    c.kind = kind;
+    if (kind == VoiceCommand::Kind::kGoTo) c.place = "main entrance";
+    const auto back = voice_command_from_words(describe(c));
+    ASSERT_TRUE(back.has_value()) << describe(c);
+    EXPECT_EQ(back->kind, kind);
+    EXPECT_EQ(back->place, c.place);
+    EXPECT_EQ(back->heard, describe(c));
+  }
+  for (const char* other : {"", "go to ", "go to", "Repeat", "repeat ", "where am I", "take me home"})
+    EXPECT_FALSE(voice_command_from_words(other).has_value()) << "'" << other << "'";
+}
+
 }  // namespace
 }  // namespace navaid::interaction

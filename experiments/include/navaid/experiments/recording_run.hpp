@@ -17,6 +17,9 @@ struct RecordingRunOptions {
   bool realtime = false;
   runtime::RealtimeOptions realtime_options;
   std::size_t device_queue = 8;  ///< real time: estimates that may wait for the device thread
+  /// With a device: what the user says (read_voice_commands), at its seconds from the recording's
+  /// start (its earliest sensor sample, as mapping.network.outages count).
+  std::filesystem::path voice;
   bool plot = true;              ///< topview.png, cues.png, report.html
   /// A ROS bag as the recording is first converted into out/recording with these options.
   io::RosBagConversion bag;

@@ -11,6 +11,7 @@
 // pocketsphinx and sphinxbase stay in the .cpp.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +38,10 @@ struct VoiceCommand {
 std::string_view to_string(VoiceCommand::Kind kind);
 /// The command as a user would say it ("go to kitchen", "repeat", ...) or "not understood".
 std::string describe(const VoiceCommand& command);
+/// The inverse of describe: "go to <place>", "repeat", "where am i", "stop guidance", "not
+/// understood" (a guidance timeline's voice_command value, navaid listen's voice_event.csv); nullopt
+/// for other words. The score is not carried: +infinity (the command was accepted).
+std::optional<VoiceCommand> voice_command_from_words(std::string_view said);
 
 struct VoiceRecognizerConfig {
   /// pocketsphinx-en-us: holds en-us/ (acoustic model) and cmudict-en-us.dict. Empty: the

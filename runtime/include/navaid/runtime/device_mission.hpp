@@ -50,4 +50,9 @@ struct DeviceMission {
 /// from here waits for it).
 std::optional<planning::GeoPoint> geodetic_position(const StateEstimate& estimate, const GeodeticOrigin& origin);
 
+/// "go to <place>" on a route's streets: their named landmarks (OSM name=*; matched without
+/// regard to case or repeated spaces), routed from where the estimate puts the user (the route's
+/// start before the GPS-map registration) and facing the landmark on arrival.
+PlaceResolver street_places(RouteMission streets);
+
 }  // namespace navaid::runtime
