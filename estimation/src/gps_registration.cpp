@@ -4,34 +4,27 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 
 #include "navaid/core/errors.hpp"
 #include "navaid/core/geodesy.hpp"
 #include "navaid/core/time.hpp"
+#include "navaid/core/number_text.hpp"
 
 namespace navaid::estimation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegToRad = kPi / 180.0;
+constexpr double kDegToRad = M_PI / 180.0;
 constexpr int kMaxGaussNewtonSteps = 20;
 
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 double wrap_angle(double a) {
-  a = std::remainder(a, 2.0 * kPi);
-  return a <= -kPi ? a + 2.0 * kPi : a;
+  a = std::remainder(a, 2.0 * M_PI);
+  return a <= -M_PI ? a + 2.0 * M_PI : a;
 }
 
 void check_lat_lon(double lat_deg, double lon_deg, const std::string& what) {
   if (!std::isfinite(lat_deg) || !std::isfinite(lon_deg) || std::abs(lat_deg) > 90.0 || std::abs(lon_deg) > 180.0)
     throw Error(what + ": latitude/longitude must be finite, within [-90, 90] and [-180, 180] deg, found (" +
-                str(lat_deg) + ", " + str(lon_deg) + ")");
+                number_text(lat_deg) + ", " + number_text(lon_deg) + ")");
 }
 
 // East/north of the geodesic from (lat1, lon1) to (lat2, lon2), with the azimuth at the start.
@@ -181,16 +174,16 @@ Mat3 checked_covariance(const Mat3& cov, std::size_t index) {
 
 void validate(const GpsRegistrationOptions& o, const std::string& source) {
   if (!(o.robust_threshold > 0.0) || !std::isfinite(o.robust_threshold))
-    throw ConfigError(source, "robust_threshold", "expected a finite value > 0 sigma, found " + str(o.robust_threshold));
+    throw ConfigError(source, "robust_threshold", "expected a finite value > 0 sigma, found " + number_text(o.robust_threshold));
   if (o.min_fixes < 2)
     throw ConfigError(source, "min_fixes", "expected an integer >= 2, found " + std::to_string(o.min_fixes));
   if (!(o.min_spread_m > 0.0) || !std::isfinite(o.min_spread_m))
-    throw ConfigError(source, "min_spread_m", "expected a finite value > 0 m, found " + str(o.min_spread_m));
+    throw ConfigError(source, "min_spread_m", "expected a finite value > 0 m, found " + number_text(o.min_spread_m));
   if (!(o.max_yaw_sigma_rad > 0.0) || !std::isfinite(o.max_yaw_sigma_rad))
-    throw ConfigError(source, "max_yaw_sigma_rad", "expected a finite value > 0 rad, found " + str(o.max_yaw_sigma_rad));
+    throw ConfigError(source, "max_yaw_sigma_rad", "expected a finite value > 0 rad, found " + number_text(o.max_yaw_sigma_rad));
   if (!(o.error_correlation_time_s >= 0.0) || !std::isfinite(o.error_correlation_time_s))
     throw ConfigError(source, "error_correlation_time_s",
-                      "expected a finite value >= 0 s, found " + str(o.error_correlation_time_s));
+                      "expected a finite value >= 0 s, found " + number_text(o.error_correlation_time_s));
   if (o.max_iterations < 1)
     throw ConfigError(source, "max_iterations", "expected an integer >= 1, found " + std::to_string(o.max_iterations));
 }

@@ -32,6 +32,8 @@
 #include "navaid/simulation/simulator.hpp"
 #include "navaid/core/random_draws.hpp"
 
+#include "csv_output.hpp"
+
 namespace navaid::experiments {
 
 namespace fs = std::filesystem;
@@ -52,13 +54,6 @@ std::string device_mount(interaction::DeviceKind actuator) {
     case interaction::DeviceKind::kHand: return "hand";
   }
   return "cane";
-}
-
-std::ofstream open_csv(const fs::path& file, const char* header) {
-  std::ofstream out(file);
-  if (!out) throw IoError(file.string(), "cannot write");
-  out << header << "\n";
-  return out;
 }
 
 /// The scenario keys of the trial as a simulated recording's simulation.yaml has them, so that the

@@ -14,16 +14,11 @@
 #include "navaid/interaction/speech_mix.hpp"
 #include "navaid/interaction/wav_file.hpp"
 
+#include "csv_output.hpp"
+
 namespace navaid::experiments {
 
 namespace {
-
-std::ofstream open_csv(const std::filesystem::path& file, const char* header) {
-  std::ofstream out(file);
-  if (!out) throw IoError(file.string(), "cannot write");
-  out << header << "\n";
-  return out;
-}
 
 std::string path_text(const std::vector<mapping::Vec2>& path) {
   std::string s;

@@ -87,7 +87,7 @@ const StateEstimate& estimate_at(const std::vector<StateEstimate>& estimates, Ti
   return it == estimates.begin() ? estimates.front() : *std::prev(it);
 }
 
-double yaw_of(const SE3& T) {
+double x_axis_heading(const SE3& T) {
   const Vec3 x = T.q * Vec3::UnitX();
   return std::atan2(x.y(), x.x());
 }
@@ -364,7 +364,7 @@ void write_cues(BagOut& bag, const fs::path& file, const std::vector<StateEstima
     const double direction = io::parse_double(in, f[c_dir], "direction_deg") * M_PI / 180.0;
     const ros::Time stamp = ros_time(t, file.string());
     const SE3& T = estimate_at(estimates, t).T_W_B;
-    const double heading = yaw_of(T) + direction;
+    const double heading = x_axis_heading(T) + direction;
     auto arrow = marker(stamp, "cue", visualization_msgs::Marker::ARROW);
     geometry_msgs::Point from, to;
     from.x = T.t.x();

@@ -11,7 +11,7 @@ namespace navaid::simulation {
 
 namespace {
 
-void require(bool ok, const std::string& key, const char* range) {
+void require_body_key(bool ok, const std::string& key, const char* range) {
   if (!ok) throw ConfigError("", key, std::string("must be ") + range);
 }
 
@@ -35,19 +35,19 @@ std::string_view to_string(BodyPart part) {
 }
 
 void validate(const BodyModel& b) {
-  require(b.radius_m > 0.05 && b.radius_m < 0.6, "user.body.radius_m", "in (0.05, 0.6) m");
-  require(b.height_m > 1.0 && b.height_m < 2.3, "user.body.height_m", "in (1, 2.3) m");
-  require(b.step_over_m >= 0 && b.step_over_m < b.legs_top_m, "user.body.step_over_m", "in [0, legs_top_m) m");
-  require(b.legs_top_m < b.head_bottom_m, "user.body.legs_top_m", "below head_bottom_m");
-  require(b.head_bottom_m < b.height_m, "user.body.head_bottom_m", "below height_m");
+  require_body_key(b.radius_m > 0.05 && b.radius_m < 0.6, "user.body.radius_m", "in (0.05, 0.6) m");
+  require_body_key(b.height_m > 1.0 && b.height_m < 2.3, "user.body.height_m", "in (1, 2.3) m");
+  require_body_key(b.step_over_m >= 0 && b.step_over_m < b.legs_top_m, "user.body.step_over_m", "in [0, legs_top_m) m");
+  require_body_key(b.legs_top_m < b.head_bottom_m, "user.body.legs_top_m", "below head_bottom_m");
+  require_body_key(b.head_bottom_m < b.height_m, "user.body.head_bottom_m", "below height_m");
 }
 
 void validate(const CaneModel& c) {
-  require(c.length_m > 0.3 && c.length_m < 2.0, "user.cane.length_m", "in (0.3, 2) m");
-  require(c.sweep_half_angle_rad >= 0 && c.sweep_half_angle_rad < 1.4, "user.cane.sweep_half_angle_deg",
+  require_body_key(c.length_m > 0.3 && c.length_m < 2.0, "user.cane.length_m", "in (0.3, 2) m");
+  require_body_key(c.sweep_half_angle_rad >= 0 && c.sweep_half_angle_rad < 1.4, "user.cane.sweep_half_angle_deg",
           "in [0, 80) deg");
-  require(c.detect_height_m > 0.02 && c.detect_height_m < 1.5, "user.cane.detect_height_m", "in (0.02, 1.5) m");
-  require(c.tip_radius_m > 0 && c.tip_radius_m < 0.2, "user.cane.tip_radius_m", "in (0, 0.2) m");
+  require_body_key(c.detect_height_m > 0.02 && c.detect_height_m < 1.5, "user.cane.detect_height_m", "in (0.02, 1.5) m");
+  require_body_key(c.tip_radius_m > 0 && c.tip_radius_m < 0.2, "user.cane.tip_radius_m", "in (0, 0.2) m");
 }
 
 ContactMonitor::ContactMonitor(const World& statics, double ground_z_m, const BodyModel& body, const CaneModel& cane)

@@ -10,23 +10,23 @@ namespace navaid::simulation {
 
 namespace {
 
-void require(bool ok, const char* key, const char* what) {
+void require_features_key(bool ok, const char* key, const char* what) {
   if (!ok) throw ConfigError("", std::string("features.") + key, what);
 }
 
 }  // namespace
 
 void validate(const FeatureSimConfig& c) {
-  require(c.landmark_spacing_m > 0 && std::isfinite(c.landmark_spacing_m), "landmark_spacing", "must be > 0");
-  require(c.rays_per_seed_point >= 1, "rays_per_seed_point", "must be >= 1");
-  require(std::isfinite(c.seed_height_m), "seed_height", "must be finite");
-  require(c.max_landmark_distance_m > 0, "max_landmark_distance", "must be > 0");
-  require(c.max_observation_range_m > 0, "max_observation_range", "must be > 0");
-  require(c.pixel_sigma_px >= 0 && std::isfinite(c.pixel_sigma_px), "pixel_sigma", "must be >= 0");
-  require(c.max_features_per_frame >= 1, "max_per_frame", "must be >= 1");
-  require(c.grid_cols >= 1 && c.grid_rows >= 1, "grid", "needs >= 1 column and row");
-  require(c.image_border_px >= 0, "image_border", "must be >= 0");
-  require(!c.disparity_sigma_px || (*c.disparity_sigma_px >= 0 && std::isfinite(*c.disparity_sigma_px)),
+  require_features_key(c.landmark_spacing_m > 0 && std::isfinite(c.landmark_spacing_m), "landmark_spacing", "must be > 0");
+  require_features_key(c.rays_per_seed_point >= 1, "rays_per_seed_point", "must be >= 1");
+  require_features_key(std::isfinite(c.seed_height_m), "seed_height", "must be finite");
+  require_features_key(c.max_landmark_distance_m > 0, "max_landmark_distance", "must be > 0");
+  require_features_key(c.max_observation_range_m > 0, "max_observation_range", "must be > 0");
+  require_features_key(c.pixel_sigma_px >= 0 && std::isfinite(c.pixel_sigma_px), "pixel_sigma", "must be >= 0");
+  require_features_key(c.max_features_per_frame >= 1, "max_per_frame", "must be >= 1");
+  require_features_key(c.grid_cols >= 1 && c.grid_rows >= 1, "grid", "needs >= 1 column and row");
+  require_features_key(c.image_border_px >= 0, "image_border", "must be >= 0");
+  require_features_key(!c.disparity_sigma_px || (*c.disparity_sigma_px >= 0 && std::isfinite(*c.disparity_sigma_px)),
           "disparity_sigma", "must be >= 0");
 }
 

@@ -15,27 +15,27 @@ namespace {
 constexpr double kTwoPi = 2.0 * M_PI;
 
 
-void require(bool ok, const char* field, const char* range) {
+void require_motion_field(bool ok, const char* field, const char* range) {
   if (!ok) throw ConfigError("", std::string("user.motion.") + field, std::string("must be ") + range);
 }
 
 }  // namespace
 
 void validate(const PersonMotionConfig& c) {
-  require(c.mount_height_m > 0 && c.mount_height_m < 3, "mount_height_m", "in (0, 3) m");
-  require(std::isfinite(c.ground_z_m), "ground_z_m", "finite");
-  require(c.speed_time_constant_s > 0, "speed_time_constant_s", "> 0");
-  require(c.max_acceleration_mps2 > 0, "max_acceleration_mps2", "> 0");
-  require(c.heading_gain_per_s > 0, "heading_gain_per_s", "> 0");
-  require(c.max_turn_rate_rad_s > 0, "max_turn_rate_rad_s", "> 0");
-  require(c.turn_time_constant_s > 0, "turn_time_constant_s", "> 0");
-  require(c.max_yaw_acceleration_rad_s2 > 0, "max_yaw_acceleration_rad_s2", "> 0");
-  require(c.step_length_m > 0.1 && c.step_length_m < 2, "step_length_m", "in (0.1, 2) m");
-  require(c.bob_amplitude_m >= 0 && c.bob_amplitude_m < 0.2, "bob_amplitude_m", "in [0, 0.2) m");
-  require(c.scan_amplitude_rad >= 0 && c.scan_amplitude_rad < 1.6, "scan_amplitude_rad", "in [0, 1.6) rad");
-  require(c.scan_period_s > 0, "scan_period_s", "> 0");
-  require(c.veer_sigma >= 0, "veer_sigma", ">= 0");
-  require(c.veer_time_constant_s > 0, "veer_time_constant_s", "> 0");
+  require_motion_field(c.mount_height_m > 0 && c.mount_height_m < 3, "mount_height_m", "in (0, 3) m");
+  require_motion_field(std::isfinite(c.ground_z_m), "ground_z_m", "finite");
+  require_motion_field(c.speed_time_constant_s > 0, "speed_time_constant_s", "> 0");
+  require_motion_field(c.max_acceleration_mps2 > 0, "max_acceleration_mps2", "> 0");
+  require_motion_field(c.heading_gain_per_s > 0, "heading_gain_per_s", "> 0");
+  require_motion_field(c.max_turn_rate_rad_s > 0, "max_turn_rate_rad_s", "> 0");
+  require_motion_field(c.turn_time_constant_s > 0, "turn_time_constant_s", "> 0");
+  require_motion_field(c.max_yaw_acceleration_rad_s2 > 0, "max_yaw_acceleration_rad_s2", "> 0");
+  require_motion_field(c.step_length_m > 0.1 && c.step_length_m < 2, "step_length_m", "in (0.1, 2) m");
+  require_motion_field(c.bob_amplitude_m >= 0 && c.bob_amplitude_m < 0.2, "bob_amplitude_m", "in [0, 0.2) m");
+  require_motion_field(c.scan_amplitude_rad >= 0 && c.scan_amplitude_rad < 1.6, "scan_amplitude_rad", "in [0, 1.6) rad");
+  require_motion_field(c.scan_period_s > 0, "scan_period_s", "> 0");
+  require_motion_field(c.veer_sigma >= 0, "veer_sigma", ">= 0");
+  require_motion_field(c.veer_time_constant_s > 0, "veer_time_constant_s", "> 0");
 }
 
 PersonMotion::PersonMotion(const PersonMotionConfig& config, const Vec2& position, double heading_rad,

@@ -9,7 +9,6 @@
 namespace navaid::simulation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const char* const kWhere = "WalkerConfig";
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -211,14 +210,14 @@ KinematicState WalkerTrajectory::state(double t) const {
 
   // Gait envelope e = current speed / cruise speed: the gait fades in and out with the ramps.
   const double e = pr.ds / v, de = pr.dds / v, dde = pr.ddds / v;
-  const double w_step = 2.0 * kPi * config_.step_frequency_hz;
+  const double w_step = 2.0 * M_PI * config_.step_frequency_hz;
   const Signal bob = gait_oscillation(config_.bob_amplitude_m, w_step, 0.0, t, e, de, dde);
   const Signal sway = gait_oscillation(config_.sway_amplitude_m, 0.5 * w_step, 0.0, t, e, de, dde);
-  const Signal pitch = gait_oscillation(config_.pitch_amplitude_rad, w_step, 0.5 * kPi, t, e, de, dde);
+  const Signal pitch = gait_oscillation(config_.pitch_amplitude_rad, w_step, 0.5 * M_PI, t, e, de, dde);
   const Signal roll = gait_oscillation(config_.roll_amplitude_rad, 0.5 * w_step, 0.0, t, e, de, dde);
   Signal scan;
   if (config_.scan_amplitude_rad != 0.0) {
-    const double ws = 2.0 * kPi / config_.scan_period_s;
+    const double ws = 2.0 * M_PI / config_.scan_period_s;
     scan = gait_oscillation(config_.scan_amplitude_rad, ws, 0.0, t, 1.0, 0.0, 0.0);
   }
 

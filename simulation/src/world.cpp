@@ -11,7 +11,6 @@ namespace navaid::simulation {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 bool finite_pose(const SE3& T) { return T.q.coeffs().allFinite() && T.t.allFinite(); }
 bool positive_finite(double v) { return std::isfinite(v) && v > 0.0; }
@@ -111,7 +110,7 @@ void append(const VerticalCylinder& s, MeshAppender& m, int segments) {
   const std::uint32_t top_c = m.vertex(s.base_center + Vec3(0, 0, s.height));
   std::vector<std::uint32_t> lo, hi;
   for (int i = 0; i < segments; ++i) {
-    const double a = 2.0 * kPi * i / segments;
+    const double a = 2.0 * M_PI * i / segments;
     const Vec3 p = s.base_center + Vec3(s.radius * std::cos(a), s.radius * std::sin(a), 0.0);
     lo.push_back(m.vertex(p));
     hi.push_back(m.vertex(p + Vec3(0, 0, s.height)));
@@ -129,10 +128,10 @@ void append(const Ellipsoid& s, MeshAppender& m, int slices, int stacks) {
   const std::uint32_t north = m.vertex(s.T_W_O * Vec3(0, 0, s.radii.z()));
   std::vector<std::vector<std::uint32_t>> rings;  // stacks - 1 rings from south to north
   for (int k = 1; k < stacks; ++k) {
-    const double theta = -0.5 * kPi + kPi * k / stacks;
+    const double theta = -0.5 * M_PI + M_PI * k / stacks;
     std::vector<std::uint32_t> ring;
     for (int i = 0; i < slices; ++i) {
-      const double phi = 2.0 * kPi * i / slices;
+      const double phi = 2.0 * M_PI * i / slices;
       const Vec3 u(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta));
       ring.push_back(m.vertex(s.T_W_O * u.cwiseProduct(s.radii)));
     }

@@ -10,11 +10,10 @@ namespace navaid::estimation {
 namespace {
 
 constexpr double kMinHorizontalFraction = 1e-3;
-constexpr double kPi = 3.14159265358979323846;
 
 bool has_horizontal(const Vec3& v) { return v.head<2>().norm() >= kMinHorizontalFraction * v.norm() && v.norm() > 0; }
 
-double wrap_pi(double a) { return std::remainder(a, 2.0 * kPi); }
+double wrap_pi(double a) { return std::remainder(a, 2.0 * M_PI); }
 
 }  // namespace
 

@@ -14,9 +14,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <random>
-#include <sstream>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/number_text.hpp"
 #include "opencv_pose.hpp"
 
 namespace navaid::estimation {
@@ -26,12 +26,6 @@ constexpr int kHybridMinDepth = 2;  // eq. 3: 2 equations per feature, 3 unknown
 constexpr int kPnpMinDepth = 4;     // cv::solvePnPRansac asserts >= 4 points
 constexpr int kEssentialMinPoints = 5;
 constexpr double kMinDepthJ = 1e-6;  // a point must stay in front of camera j [m]
-
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 std::optional<PoseChange> fail(std::string* why, const std::string& reason) {
   if (why) *why = reason;
@@ -43,7 +37,7 @@ void check_input(const std::vector<PoseChangeCorrespondence>& c) {
     if (!c[k].m_i.allFinite() || !c[k].m_j.allFinite())
       throw Error("pose change: correspondence " + std::to_string(k) + " has non-finite image coordinates");
     if (c[k].depth_i && !(std::isfinite(*c[k].depth_i) && *c[k].depth_i > 0.0))
-      throw Error("pose change: correspondence " + std::to_string(k) + " has depth " + str(*c[k].depth_i) +
+      throw Error("pose change: correspondence " + std::to_string(k) + " has depth " + number_text(*c[k].depth_i) +
                   " m; expected a finite value > 0");
   }
 }
@@ -479,23 +473,23 @@ std::optional<PoseChange> estimate_pnp(const std::vector<PoseChangeCorrespondenc
 
 void validate(const PoseChangeOptions& o, const std::string& source) {
   if (!(o.focal_px > 0.0) || !std::isfinite(o.focal_px))
-    throw ConfigError(source, "focal_px", "expected a finite value > 0 px, found " + str(o.focal_px));
+    throw ConfigError(source, "focal_px", "expected a finite value > 0 px, found " + number_text(o.focal_px));
   if (!(o.ransac_threshold_px > 0.0) || !std::isfinite(o.ransac_threshold_px))
-    throw ConfigError(source, "ransac_threshold_px", "expected a finite value > 0 px, found " + str(o.ransac_threshold_px));
+    throw ConfigError(source, "ransac_threshold_px", "expected a finite value > 0 px, found " + number_text(o.ransac_threshold_px));
   if (!(o.ransac_confidence > 0.0 && o.ransac_confidence < 1.0))
-    throw ConfigError(source, "ransac_confidence", "expected a value in (0, 1), found " + str(o.ransac_confidence));
+    throw ConfigError(source, "ransac_confidence", "expected a value in (0, 1), found " + number_text(o.ransac_confidence));
   if (o.ransac_max_iterations < 1)
     throw ConfigError(source, "ransac_max_iterations",
                       "expected an integer >= 1, found " + std::to_string(o.ransac_max_iterations));
   if (!(o.depth_threshold_px >= 0.0) || !std::isfinite(o.depth_threshold_px))
-    throw ConfigError(source, "depth_threshold_px", "expected a finite value >= 0 px, found " + str(o.depth_threshold_px));
+    throw ConfigError(source, "depth_threshold_px", "expected a finite value >= 0 px, found " + number_text(o.depth_threshold_px));
   if (o.min_depth_inliers < 0)
     throw ConfigError(source, "min_depth_inliers", "expected an integer >= 0, found " + std::to_string(o.min_depth_inliers));
   if (o.min_correspondences < kEssentialMinPoints)
     throw ConfigError(source, "min_correspondences",
                       "expected an integer >= 5, found " + std::to_string(o.min_correspondences));
   if (!(o.noise_sigma_px > 0.0) || !std::isfinite(o.noise_sigma_px))
-    throw ConfigError(source, "noise_sigma_px", "expected a finite value > 0 px, found " + str(o.noise_sigma_px));
+    throw ConfigError(source, "noise_sigma_px", "expected a finite value > 0 px, found " + number_text(o.noise_sigma_px));
 }
 
 std::optional<PoseChange> estimate_pose_change(const std::vector<PoseChangeCorrespondence>& c, PoseChangeMethod method,

@@ -1,26 +1,19 @@
 #include "navaid/estimation/initialization/visual_inertial_alignment.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/number_text.hpp"
 
 namespace navaid::estimation {
 namespace {
 
 using MatX = Eigen::MatrixXd;
 using VecX = Eigen::VectorXd;
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
 
 void validate_input(const std::vector<Timestamp>& times, const std::vector<SE3>& T_l_C, const SE3& T_B_C,
                     const std::vector<ImuPreintegration>& pre) {
@@ -181,8 +174,8 @@ VisualInertialAlignment align_visual_inertial(const std::vector<Timestamp>& time
                           &out.failure))
     return out;
   if (!(out.gyro_bias.norm() <= o.max_gyro_bias)) {
-    out.failure = "implausible gyro bias |b_g| = " + fmt(out.gyro_bias.norm()) + " rad/s (limit " +
-                  fmt(o.max_gyro_bias) + ")";
+    out.failure = "implausible gyro bias |b_g| = " + number_text(out.gyro_bias.norm(), 4) + " rad/s (limit " +
+                  number_text(o.max_gyro_bias, 4) + ")";
     return out;
   }
 
@@ -199,8 +192,8 @@ VisualInertialAlignment align_visual_inertial(const std::vector<Timestamp>& time
   out.gravity_l_unrefined = x->tail<3>();
   const double rel = std::abs(out.gravity_l_unrefined.norm() - g_norm) / g_norm;
   if (!(rel <= o.gravity_norm_tolerance)) {
-    out.failure = "gravity norm " + fmt(out.gravity_l_unrefined.norm()) + " m/s^2 is off by " + fmt(100 * rel) +
-                  " % (limit " + fmt(100 * o.gravity_norm_tolerance) + " %)";
+    out.failure = "gravity norm " + number_text(out.gravity_l_unrefined.norm(), 4) + " m/s^2 is off by " + number_text(100 * rel, 4) +
+                  " % (limit " + number_text(100 * o.gravity_norm_tolerance, 4) + " %)";
     return out;
   }
 
@@ -232,7 +225,7 @@ VisualInertialAlignment align_visual_inertial(const std::vector<Timestamp>& time
   out.gravity_l = g;
   out.scale = o.estimate_scale ? xr[nx - 1] : 1.0;
   if (o.estimate_scale && !(out.scale >= o.min_scale)) {
-    out.failure = "estimated scale " + fmt(out.scale) + " is below " + fmt(o.min_scale);
+    out.failure = "estimated scale " + number_text(out.scale, 4) + " is below " + number_text(o.min_scale, 4);
     return out;
   }
   out.velocities_l.resize(n);

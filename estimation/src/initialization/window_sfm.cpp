@@ -8,7 +8,6 @@
 #include <limits>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include <Eigen/Cholesky>
@@ -17,17 +16,11 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "navaid/core/errors.hpp"
+#include "navaid/core/number_text.hpp"
 #include "opencv_pose.hpp"
 
 namespace navaid::estimation {
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
 
 Vec3 homogeneous(const Vec2& m) { return Vec3(m.x(), m.y(), 1.0); }
 
@@ -126,7 +119,7 @@ class Solver {
       }
       parallax /= static_cast<double>(c.size());
       if (parallax < o_.min_parallax_px) {
-        reject(1, prefix + "mean parallax " + fmt(parallax) + " px (need " + fmt(o_.min_parallax_px) + ")");
+        reject(1, prefix + "mean parallax " + number_text(parallax, 4) + " px (need " + number_text(o_.min_parallax_px, 4) + ")");
         continue;
       }
       std::string why;
@@ -396,8 +389,8 @@ class Solver {
     std::nth_element(after.begin(), after.begin() + static_cast<long>(after.size() / 2), after.end());
     const double median = after.empty() ? 0.0 : after[after.size() / 2];
     if (!(median <= o_.max_median_error_px)) {
-      out->failure = "bundle adjustment: median reprojection error " + fmt(median) + " px (limit " +
-                     fmt(o_.max_median_error_px) + ")";
+      out->failure = "bundle adjustment: median reprojection error " + number_text(median, 4) + " px (limit " +
+                     number_text(o_.max_median_error_px, 4) + ")";
       return;
     }
     for (std::size_t k = 0; k < n; ++k) out->T_l_C.push_back(*poses_[k]);
@@ -426,7 +419,7 @@ void validate_input(const std::vector<SfmKeyframe>& kfs) {
       const std::string what = "keyframe " + std::to_string(k) + ", track " + std::to_string(ob.track_id) + ": ";
       if (!ob.m.allFinite()) throw Error(where + what + "non-finite coordinates");
       if (ob.depth_m && !(std::isfinite(*ob.depth_m) && *ob.depth_m > 0))
-        throw Error(where + what + "depth " + fmt(*ob.depth_m) + " is not a positive finite number");
+        throw Error(where + what + "depth " + number_text(*ob.depth_m, 4) + " is not a positive finite number");
       if (!seen.insert(ob.track_id).second) throw Error(where + what + "observed twice");
     }
   }

@@ -12,7 +12,6 @@ namespace navaid::simulation::scenarios {
 
 namespace {
 using C = SemanticClass;
-constexpr double kPi = 3.14159265358979323846;
 Quat yaw_quat(double yaw) { return Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())); }
 }  // namespace
 
@@ -74,7 +73,7 @@ void SceneBuilder::tree(const Vec2& xy, double z0, double crown_bottom_z, double
   cylinder(xy, z0, trunk_r, crown_center - z0, C::kTreeTrunk, 0.08);
   // The crown's surface (its albedo draw) before its yaw: the order of record (random_draws.hpp).
   const Surface crown_surface = surface(C::kVegetation, 0.15);
-  const double crown_yaw = rng_.uniform(0.0, kPi);
+  const double crown_yaw = rng_.uniform(0.0, M_PI);
   world_.add(Ellipsoid{SE3(yaw_quat(crown_yaw), Vec3(xy.x(), xy.y(), crown_center)),
                        Vec3(crown_radius, 0.9 * crown_radius, crown_rz)},
              crown_surface);
@@ -228,7 +227,7 @@ void SceneBuilder::room_shell(const Vec2& lo, const Vec2& hi, double z0, double 
   if (ceiling_height > 0.0) {
     const Vec2 mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
     // Flipped so that the ceiling faces down into the room.
-    world_.add(PlanePatch{SE3(Quat(Eigen::AngleAxisd(kPi, Vec3::UnitX())), Vec3(mid.x(), mid.y(), z0 + ceiling_height)),
+    world_.add(PlanePatch{SE3(Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitX())), Vec3(mid.x(), mid.y(), z0 + ceiling_height)),
                           half.x(), half.y()},
                surface(C::kCeiling, texture_scale));
   }

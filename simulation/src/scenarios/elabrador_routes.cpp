@@ -9,7 +9,6 @@ namespace navaid::simulation::scenarios {
 namespace {
 
 using C = SemanticClass;
-constexpr double kPi = 3.14159265358979323846;
 
 // Buildings along y = y_front (facing the street) between x0 and x1, extending away from the
 // street (direction `side`: +1 north, -1 south), with random widths, gaps, depths and heights.
@@ -69,7 +68,7 @@ void build_route1(Scenario& s, Rng& rng) {
   // Residential gate at the start: compound fence with an opening and a small name board.
   b.box(Vec3(1.8, 36.0, 0.0), Vec3(30.0, 36.3, 2.0), C::kFence, 0.1);
   b.box(Vec3(-9.5, 36.0, 0.0), Vec3(-1.8, 36.3, 2.0), C::kFence, 0.1);
-  b.landmark(Vec2(0.0, 37.0), 0.0, 3.0, kPi / 2);
+  b.landmark(Vec2(0.0, 37.0), 0.0, 3.0, M_PI / 2);
 
   // Tall residential towers beside the walkway and across the side street (a street canyon),
   // then a row of mixed buildings along the main street and across it.
@@ -99,7 +98,7 @@ void build_route1(Scenario& s, Rng& rng) {
   // The wayside park and its landmark slogan board ("Honoring the Pioneers of Science"), which the
   // walker faces at the end of the route.
   b.horizontal_patch(Vec2(236.0, 1.5), Vec2(270.0, 40.0), 0.0, C::kTerrain, 0.3);
-  b.landmark(Vec2(240.0, 3.6), 0.0, 3.0, kPi / 2);
+  b.landmark(Vec2(240.0, 3.6), 0.0, 3.0, M_PI / 2);
   for (int i = 0; i < 12; ++i) {
     const double y = rng.uniform(8.0, 38.0);  // y before x (random_draws.hpp: the order of record)
     b.tree(Vec2(rng.uniform(240.0, 268.0), y), 0.0, 3.0, 2.4);
@@ -188,7 +187,7 @@ void build_route2(Scenario& s, Rng& rng) {
   // Entrance of the residential community: fence with a gate and the name board ("Kexing Unit").
   b.box(Vec3(256.0, 3.0, 0.0), Vec3(296.5, 3.3, 1.8), C::kFence, 0.1);
   b.box(Vec3(303.5, 3.0, 0.0), Vec3(320.0, 3.3, 1.8), C::kFence, 0.1);
-  b.landmark(Vec2(300.0, 4.2), 0.0, 4.0, kPi / 2);
+  b.landmark(Vec2(300.0, 4.2), 0.0, 4.0, M_PI / 2);
   b.box(Vec3(262.0, 12.0, 0.0), Vec3(290.0, 30.0, 24.0), C::kBuilding, 0.4);
   b.box(Vec3(306.0, 12.0, 0.0), Vec3(326.0, 34.0, 21.0), C::kBuilding, 0.4);
 

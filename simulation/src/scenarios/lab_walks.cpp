@@ -10,7 +10,6 @@ namespace navaid::simulation::scenarios {
 namespace {
 
 using C = SemanticClass;
-constexpr double kPi = 3.14159265358979323846;
 
 // Lab: x in [0, 16], y in [0, 12], 3 m high; a 2.4 m corridor east of it (x in [16.1, 18.5])
 // reached through two doors (y = 3 and y = 9). Walls, floor and furniture carry fine textures
@@ -31,13 +30,13 @@ void build_lab(SceneBuilder& b) {
   for (double x0 : {1.0, 9.0}) b.box(Vec3(x0, 11.4, 0.0), Vec3(x0 + 6.0, 12.0, r.uniform(1.8, 2.2)), C::kWall, 0.05);
   b.box(Vec3(0.0, 4.0, 0.0), Vec3(0.6, 10.0, 1.8), C::kWall, 0.05);
   b.table(Vec2(10.0, 0.4), Vec2(4.0, 0.4), 0.0, 0.0);
-  for (double x = 7.0; x < 14.0; x += 1.5) b.chair(Vec2(x, 1.2), 0.0, -kPi / 2 + r.uniform(-0.3, 0.3));
+  for (double x = 7.0; x < 14.0; x += 1.5) b.chair(Vec2(x, 1.2), 0.0, -M_PI / 2 + r.uniform(-0.3, 0.3));
   // Two table islands with chairs on their long sides; the central aisle x in [7, 9] stays free.
   for (double cx : {5.5, 10.5}) {
     b.table(Vec2(cx, 6.0), Vec2(1.5, 1.5), 0.0, 0.0);
     for (double dx : {-0.8, 0.0, 0.8}) {
-      b.chair(Vec2(cx + dx, 4.0), 0.0, kPi / 2 + r.uniform(-0.3, 0.3));
-      b.chair(Vec2(cx + dx, 8.0), 0.0, -kPi / 2 + r.uniform(-0.3, 0.3));
+      b.chair(Vec2(cx + dx, 4.0), 0.0, M_PI / 2 + r.uniform(-0.3, 0.3));
+      b.chair(Vec2(cx + dx, 8.0), 0.0, -M_PI / 2 + r.uniform(-0.3, 0.3));
     }
     b.box(Vec3(cx - 0.3, 5.8, 0.74), Vec3(cx + 0.2, 6.2, 1.1), C::kUnlabeled, 0.03);  // an instrument on the table
   }

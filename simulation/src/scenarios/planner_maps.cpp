@@ -13,7 +13,6 @@ namespace navaid::simulation::scenarios {
 namespace {
 
 using C = SemanticClass;
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxAttempts = 10;
 
 struct Rect {
@@ -76,7 +75,7 @@ void furnish(SceneBuilder& b, const Rect& room) {
     for (double x = in.lo.x() + 0.75; x + 0.75 <= in.hi.x(); x += 2.0) {
       if (r.chance(0.35)) continue;
       b.table(Vec2(x, y), Vec2(0.7, 0.35), 0.0, 0.0);
-      b.chair(Vec2(x + r.uniform(-0.3, 0.3), y + 0.7), 0.0, -kPi / 2 + r.uniform(-0.4, 0.4));
+      b.chair(Vec2(x + r.uniform(-0.3, 0.3), y + 0.7), 0.0, -M_PI / 2 + r.uniform(-0.4, 0.4));
     }
   if (in.size().x() > 1.0 && in.size().y() > 1.0 && r.chance(0.6)) {
     const Vec2 c(r.uniform(in.lo.x() + 0.3, in.hi.x() - 0.3), in.hi.y() - 0.25);
@@ -218,7 +217,7 @@ void build_pillar(Scenario& s, Rng& rng) {
           b.cylinder(p, 0.0, r.uniform(0.2, 0.45), h, C::kPole, 0.1);
         } else {
           const double half = r.uniform(0.2, 0.4);
-          b.oriented_box(Vec3(p.x(), p.y(), 0.5 * h), Vec3(half, half, 0.5 * h), r.uniform(0.0, kPi / 2), C::kWall, 0.1);
+          b.oriented_box(Vec3(p.x(), p.y(), 0.5 * h), Vec3(half, half, 0.5 * h), r.uniform(0.0, M_PI / 2), C::kWall, 0.1);
         }
       }
     return std::make_pair(start, goal);
@@ -259,12 +258,12 @@ void build_school(Scenario& s, Rng& rng) {
                    2.5, r.uniform(1.2, 1.6));  // crown tops stay below the 5 m extent
           for (int k = 0; k < trees / 2; ++k)
             b.bench(Vec2(r.uniform(blk.lo.x() + 2, blk.hi.x() - 2), r.uniform(blk.lo.y() + 2, blk.hi.y() - 2)), 0.0,
-                    r.uniform(0.0, kPi));
+                    r.uniform(0.0, M_PI));
         } else {  // lobby: columns on a 6 m grid and tables between them
           for (double y = blk.lo.y() + 4.0; y < blk.hi.y() - 3.0; y += 6.0)
             for (double x = blk.lo.x() + 4.0; x < blk.hi.x() - 3.0; x += 6.0) {
               b.cylinder(Vec2(x, y), 0.0, 0.35, h, C::kPole, 0.1);
-              if (r.chance(0.4)) b.table(Vec2(x + 3.0, y + 3.0), Vec2(0.8, 0.5), 0.0, r.uniform(0.0, kPi));
+              if (r.chance(0.4)) b.table(Vec2(x + 3.0, y + 3.0), Vec2(0.8, 0.5), 0.0, r.uniform(0.0, M_PI));
             }
         }
       }

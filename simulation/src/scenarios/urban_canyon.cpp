@@ -6,14 +6,13 @@
 namespace navaid::simulation {
 
 double urban_canyon_factor(const RayCaster& static_world, const Vec3& p_W) {
-  constexpr double kPi = 3.14159265358979323846;
   constexpr int kAzimuths = 24;
   constexpr double kElevationsDeg[] = {15.0, 25.0, 35.0, 45.0};
   int blocked = 0, total = 0;
   for (double el_deg : kElevationsDeg) {
-    const double el = el_deg * kPi / 180.0;
+    const double el = el_deg * M_PI / 180.0;
     for (int k = 0; k < kAzimuths; ++k) {
-      const double az = 2.0 * kPi * k / kAzimuths;
+      const double az = 2.0 * M_PI * k / kAzimuths;
       const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
       // Small t_min: the receiver sits on the walker, not inside geometry.
       if (static_world.cast(p_W, dir, 2000.0, 1e-3)) ++blocked;
