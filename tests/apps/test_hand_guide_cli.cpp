@@ -118,26 +118,27 @@ class HandGuideCli : public ::testing::Test {
  protected:
   // 6 s of lab-walk-1 (1 s standing, then east along y = 2.2 towards the desk with the tagged
   // box), hand mount, full 640 x 480 images (the tag is 15-60 px wide) at 10 Hz; and a run of the
-  // estimator on it.
+  // estimator on it (made once for all the suite's test processes).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("hand_guide_cli");
-    const auto sim = navaid_cli("simulate --scenario lab-walk-1 --seed 4 --threads 2 --out '" + recording().string() +
-                                "' --set duration=6 --set sensor.camera.rate=10");
-    ASSERT_EQ(sim.status, 0) << sim.output;
-    const auto run = navaid_cli("run --recording '" + recording().string() + "' --out '" + path("run").string() +
-                                "' --no-plot");
-    ASSERT_EQ(run.status, 0) << run.output;
+    inputs_ = navaid::testing::shared_cli_fixture(
+        "hand-guide-walk", {"simulate --scenario lab-walk-1 --seed 4 --threads 2 --out {dir}/walk"
+                            " --set duration=6 --set sensor.camera.rate=10",
+                            "run --recording {dir}/walk --out {dir}/run --no-plot"});
   }
   static void TearDownTestSuite() { dir_.reset(); }
-  static fs::path recording() { return *dir_ / "walk"; }
+  static fs::path recording() { return inputs_ / "walk"; }
+  static fs::path estimate_run() { return inputs_ / "run"; }
   static fs::path path(const std::string& name) { return *dir_ / name; }
   static navaid::testing::CliRun guide(const fs::path& out, const std::string& extra) {
     return navaid_cli("hand-guide --recording '" + recording().string() + "' --out '" + out.string() + "' " + extra);
   }
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 
 std::unique_ptr<ScratchDir> HandGuideCli::dir_;
+fs::path HandGuideCli::inputs_;
 
 TEST_F(HandGuideCli, GroundTruthPosesDetectTheTagInViewAndGuideTheHandConsistently) {
   const auto r = guide(path("gt"), "--poses groundtruth");
@@ -269,7 +270,7 @@ TEST_F(HandGuideCli, GroundTruthPosesDetectTheTagInViewAndGuideTheHandConsistent
 }
 
 TEST_F(HandGuideCli, EstimatedPosesCarryTheTargetThroughCaseThree) {
-  const auto r = guide(path("est"), "--estimate '" + path("run").string() + "'");
+  const auto r = guide(path("est"), "--estimate '" + estimate_run().string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   const auto rows = read_guidance(path("est") / "guidance.csv");
   std::vector<double> case3_error;
@@ -336,7 +337,7 @@ TEST_F(HandGuideCli, Errors) {
   EXPECT_EQ(bad_key.status, 2) << bad_key.output;
   EXPECT_NE(bad_key.output.find("planning.hand.no_such_key"), std::string::npos) << bad_key.output;
 
-  const auto est_and_gt = guide(path("e4"), "--estimate '" + path("run").string() + "' --poses groundtruth");
+  const auto est_and_gt = guide(path("e4"), "--estimate '" + estimate_run().string() + "' --poses groundtruth");
   EXPECT_EQ(est_and_gt.status, 2) << est_and_gt.output;
 
   // A recording without images (feature mode): nothing to detect a tag in.

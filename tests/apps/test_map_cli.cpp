@@ -22,27 +22,28 @@ namespace {
 
 class MapCli : public ::testing::Test {
  protected:
-  // One rendered walk for the suite: 6 s of the corridor (1 s still start), cane mount, 320x240 at 15 Hz.
+  // One rendered walk for the suite: 6 s of the corridor (1 s still start), cane mount, 320x240 at
+  // 15 Hz, and a mapping run on it (made once for all the suite's test processes).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("map_cli");
-    const auto sim = navaid_cli("simulate --scenario corridor --mount cane --seed 3 --threads 1 --out '" +
-                                path("walk").string() +
-                                "' --set duration=6 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15");
-    ASSERT_EQ(sim.status, 0) << sim.output;
-    const auto run = navaid_cli("run --recording '" + path("walk").string() + "' --out '" + path("run").string() +
-                                "' --set mapping.enabled=true --no-plot");
-    ASSERT_EQ(run.status, 0) << run.output;
+    inputs_ = navaid::testing::shared_cli_fixture(
+        "map-cli-walk", {"simulate --scenario corridor --mount cane --seed 3 --threads 1 --out {dir}/walk"
+                         " --set duration=6 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15",
+                         "run --recording {dir}/walk --out {dir}/run --set mapping.enabled=true --no-plot"});
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static fs::path path(const std::string& name) { return *dir_ / name; }
+  static fs::path input(const std::string& name) { return inputs_ / name; }
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 
 std::unique_ptr<ScratchDir> MapCli::dir_;
+fs::path MapCli::inputs_;
 
 TEST_F(MapCli, GroundTruthPosesGiveAMapFolderWithQuality) {
   const fs::path out = path("map-gt");
-  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
+  const auto r = navaid_cli("map --recording '" + input("walk").string() + "' --poses groundtruth --out '" +
                             out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("quality: occupancy precision"), std::string::npos) << r.output;
@@ -64,23 +65,23 @@ TEST_F(MapCli, GroundTruthPosesGiveAMapFolderWithQuality) {
 }
 
 TEST_F(MapCli, TheRunMapsAsItGoesAndNavaidMapRebuildsTheSameMapFromItsEstimates) {
-  const auto run_summary = nlohmann::json::parse(read_text(path("run") / "summary.json"));
+  const auto run_summary = nlohmann::json::parse(read_text(input("run") / "summary.json"));
   ASSERT_TRUE(run_summary.contains("mapping"));
   const std::size_t mapped = run_summary["mapping"]["frames"]["mapped"].get<std::size_t>();
   EXPECT_GT(mapped, 40u);
   EXPECT_GT(run_summary["mapping"]["frames"]["not_localised"].get<std::size_t>(), 0u);  // the still start initializes
   const fs::path out = path("map-est");
-  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --run '" + path("run").string() +
+  const auto r = navaid_cli("map --recording '" + input("walk").string() + "' --run '" + input("run").string() +
                             "' --out '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(s["frames"]["mapped"].get<std::size_t>(), mapped);
-  EXPECT_EQ(read_text(out / "map.ply"), read_text(path("run") / "map" / "map.ply"));
+  EXPECT_EQ(read_text(out / "map.ply"), read_text(input("run") / "map" / "map.ply"));
 }
 
 TEST_F(MapCli, TheObstaclePipelineWritesAScanPerFrame) {
   const fs::path out = path("map-obstacles");
-  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
+  const auto r = navaid_cli("map --recording '" + input("walk").string() + "' --poses groundtruth --out '" +
                             out.string() + "' --set mapping.obstacles.enabled=true --png-every 0");
   ASSERT_EQ(r.status, 0) << r.output;
   std::istringstream csv(read_text(out / "obstacle_scan.csv"));
@@ -111,7 +112,7 @@ TEST_F(MapCli, ARunOfAnotherRecordingIsRejected) {
                        "--set sensor.camera.rate=5")
                 .status,
             0);
-  const auto r = navaid_cli("map --recording '" + other.string() + "' --run '" + path("run").string() + "' --out '" +
+  const auto r = navaid_cli("map --recording '" + other.string() + "' --run '" + input("run").string() + "' --out '" +
                             path("bad").string() + "'");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("estimates.csv"), std::string::npos) << r.output;
@@ -122,7 +123,7 @@ TEST_F(MapCli, ABadCovarianceInTheRunIsAnErrorNamingTheFile) {
   // Copy the run and make one estimate's position covariance negative (not positive definite).
   const fs::path bad = path("bad-run");
   fs::create_directories(bad);
-  std::istringstream in(read_text(path("run") / "estimates.csv"));
+  std::istringstream in(read_text(input("run") / "estimates.csv"));
   std::ostringstream out;
   std::string line;
   std::getline(in, line);
@@ -142,7 +143,7 @@ TEST_F(MapCli, ABadCovarianceInTheRunIsAnErrorNamingTheFile) {
     out << "\n";
   }
   navaid::testing::write_text(bad / "estimates.csv", out.str());
-  const auto r = navaid_cli("map --recording '" + path("walk").string() + "' --run '" + bad.string() + "' --out '" +
+  const auto r = navaid_cli("map --recording '" + input("walk").string() + "' --run '" + bad.string() + "' --out '" +
                             path("bad-map").string() + "'");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("estimates.csv"), std::string::npos) << r.output;
@@ -152,10 +153,10 @@ TEST_F(MapCli, ABadCovarianceInTheRunIsAnErrorNamingTheFile) {
 }
 
 TEST_F(MapCli, UsageErrors) {
-  const auto no_run = navaid_cli("map --recording '" + path("walk").string() + "' --out '" + path("x").string() + "'");
+  const auto no_run = navaid_cli("map --recording '" + input("walk").string() + "' --out '" + path("x").string() + "'");
   EXPECT_NE(no_run.status, 0);
   EXPECT_NE(no_run.output.find("--run is required"), std::string::npos) << no_run.output;
-  const auto bad_key = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
+  const auto bad_key = navaid_cli("map --recording '" + input("walk").string() + "' --poses groundtruth --out '" +
                                   path("y").string() + "' --set mapping.map.fusion=mean");
   EXPECT_NE(bad_key.status, 0);
   EXPECT_NE(bad_key.output.find("mapping.map.fusion"), std::string::npos) << bad_key.output;

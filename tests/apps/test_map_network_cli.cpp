@@ -20,23 +20,25 @@ namespace {
 class MapNetworkCli : public ::testing::Test {
  protected:
   // 4 s of the corridor at 10 Hz, 160x120: 41 labelled frames at t = 0, 0.1, ..., 4.0 s.
+  // Made once for all the suite's test processes.
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("map_network_cli");
-    const auto sim = navaid_cli("simulate --scenario corridor --mount cane --seed 3 --threads 1 --out '" +
-                                path("walk").string() +
-                                "' --set duration=4 --set sensor.camera.resolution=[160,120] --set sensor.camera.rate=10");
-    ASSERT_EQ(sim.status, 0) << sim.output;
+    inputs_ = navaid::testing::shared_cli_fixture(
+        "network-walk", {"simulate --scenario corridor --mount cane --seed 3 --threads 1 --out {dir}/walk"
+                         " --set duration=4 --set sensor.camera.resolution=[160,120] --set sensor.camera.rate=10"});
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static fs::path path(const std::string& name) { return *dir_ / name; }
   static navaid::testing::CliRun map(const std::string& out, const std::string& extra) {
-    return navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --no-quality --png-every 0 --out '" +
+    return navaid_cli("map --recording '" + (inputs_ / "walk").string() + "' --poses groundtruth --no-quality --png-every 0 --out '" +
                       path(out).string() + "' " + extra);
   }
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 
 std::unique_ptr<ScratchDir> MapNetworkCli::dir_;
+fs::path MapNetworkCli::inputs_;
 
 TEST_F(MapNetworkCli, AnOutageMapsGeometryOnlyUntilTheLinkIsRestored) {
   const auto base = map("base", "");

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,35 +27,43 @@ namespace {
 
 class RosBagCli : public ::testing::Test {
  protected:
-  // 6 s of the corridor at 320x240, 15 Hz; the same walk as a bz2 and as an lz4 bag.
+  // 6 s of the corridor at 320x240, 15 Hz; the same walk as a bz2 and as an lz4 bag (made once for
+  // all the suite's test processes).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("ros_bag_cli");
-    const auto sim = navaid_cli("simulate --scenario corridor --mount cane --seed 3 --threads 1 --out '" +
-                                path("walk").string() +
-                                "' --set duration=6 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15");
-    ASSERT_EQ(sim.status, 0) << sim.output;
-    for (const char* compression : {"bz2", "lz4"}) {
-      const std::string command = "/usr/bin/python3 '" + std::string(NAVAID_SOURCE_DIR) +
-                                  "/tests/apps/fixtures/recording_to_bag.py' '" + path("walk").string() + "' '" +
-                                  path(std::string("walk-") + compression + ".bag").string() + "' --compression " +
-                                  compression;
-      ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    }
+    const std::string simulate =
+        "simulate --scenario corridor --mount cane --seed 3 --threads 1 --set duration=6"
+        " --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15 --out ";
+    const std::string to_bag = "/usr/bin/python3 '" + std::string(NAVAID_SOURCE_DIR) +
+                               "/tests/apps/fixtures/recording_to_bag.py' ";
+    inputs_ = navaid::testing::shared_fixture("ros-bag-walk", simulate + "\n" + to_bag, [&](const fs::path& folder) {
+      const auto sim = navaid_cli(simulate + q(folder / "walk"));
+      if (sim.status != 0) throw std::runtime_error(sim.output);
+      for (const char* compression : {"bz2", "lz4"}) {
+        const std::string command = to_bag + q(folder / "walk") + " " +
+                                    q(folder / (std::string("walk-") + compression + ".bag")) + " --compression " +
+                                    compression;
+        if (std::system(command.c_str()) != 0) throw std::runtime_error(command + " failed");
+      }
+    });
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static fs::path path(const std::string& name) { return *dir_ / name; }
+  static fs::path input(const std::string& name) { return inputs_ / name; }
   static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 std::unique_ptr<ScratchDir> RosBagCli::dir_;
+fs::path RosBagCli::inputs_;
 
 // The simulator's depth model (0.4-6 m, 95 mm baseline, 0.08 px) given to the bag run, so both runs
 // see the same calibration: the estimates are the same bytes.
 TEST_F(RosBagCli, RunOnTheBagGivesTheRecordingsEstimates) {
-  const auto on_recording = navaid_cli("run --recording " + q(path("walk")) + " --out " + q(path("run-rec")) + " --no-plot");
+  const auto on_recording = navaid_cli("run --recording " + q(input("walk")) + " --out " + q(path("run-rec")) + " --no-plot");
   ASSERT_EQ(on_recording.status, 0) << on_recording.output;
-  const auto on_bag = navaid_cli("run --recording " + q(path("walk-bz2.bag")) + " --out " + q(path("run-bag")) +
-                                 " --bag-preset realsense --imu-noise " + q(path("walk-bz2.bag.imu.yaml")) +
+  const auto on_bag = navaid_cli("run --recording " + q(input("walk-bz2.bag")) + " --out " + q(path("run-bag")) +
+                                 " --bag-preset realsense --imu-noise " + q(input("walk-bz2.bag.imu.yaml")) +
                                  " --depth-range 0.4 6 --set estimator.depth.baseline=0.095"
                                  " --set estimator.depth.disparity_sigma=0.08 --no-plot");
   ASSERT_EQ(on_bag.status, 0) << on_bag.output;
@@ -64,22 +73,22 @@ TEST_F(RosBagCli, RunOnTheBagGivesTheRecordingsEstimates) {
   EXPECT_EQ(read_text(path("run-bag") / "estimates.csv"), read_text(path("run-rec") / "estimates.csv"));
 
   // A D455 preset gives the datasheet's range and baseline: depth is used.
-  const auto preset = navaid_cli("run --recording " + q(path("walk-bz2.bag")) + " --out " + q(path("run-d455")) +
-                                 " --bag-preset realsense-d455 --imu-noise " + q(path("walk-bz2.bag.imu.yaml")) +
+  const auto preset = navaid_cli("run --recording " + q(input("walk-bz2.bag")) + " --out " + q(path("run-d455")) +
+                                 " --bag-preset realsense-d455 --imu-noise " + q(input("walk-bz2.bag.imu.yaml")) +
                                  " --no-plot");
   ASSERT_EQ(preset.status, 0) << preset.output;
   EXPECT_EQ(preset.output.find(" 0 % RGBD-VIO"), std::string::npos) << preset.output;
 }
 
 TEST_F(RosBagCli, InfoAndConvertOnBothCompressions) {
-  const auto info = navaid_cli("info " + q(path("walk-lz4.bag")));
+  const auto info = navaid_cli("info " + q(input("walk-lz4.bag")));
   ASSERT_EQ(info.status, 0) << info.output;
   EXPECT_NE(info.output.find("/camera/aligned_depth_to_color/image_raw"), std::string::npos) << info.output;
   EXPECT_NE(info.output.find("sensor_msgs/CameraInfo"), std::string::npos) << info.output;
   for (const char* c : {"bz2", "lz4"}) {
     const fs::path out = path(std::string("converted-") + c);
-    const auto run = navaid_cli("convert " + q(path(std::string("walk-") + c + ".bag")) + " " + q(out) +
-                                " --bag-preset realsense-d455 --imu-noise " + q(path("walk-bz2.bag.imu.yaml")));
+    const auto run = navaid_cli("convert " + q(input(std::string("walk-") + c + ".bag")) + " " + q(out) +
+                                " --bag-preset realsense-d455 --imu-noise " + q(input("walk-bz2.bag.imu.yaml")));
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("91 frames"), std::string::npos) << run.output;
   }
@@ -87,13 +96,13 @@ TEST_F(RosBagCli, InfoAndConvertOnBothCompressions) {
   EXPECT_EQ(navaid::testing::folder_contents(path("converted-bz2")),
             navaid::testing::folder_contents(path("converted-lz4")));
   // Frames and IMU as in the simulated recording.
-  EXPECT_EQ(read_text(path("converted-bz2") / "imu.csv"), read_text(path("walk") / "imu.csv"));
+  EXPECT_EQ(read_text(path("converted-bz2") / "imu.csv"), read_text(input("walk") / "imu.csv"));
   EXPECT_EQ(read_text(path("converted-bz2") / "rgb" / "cam0_1704067199000000000.png").size(),
-            read_text(path("walk") / "rgb" / "cam0_1704067199000000000.png").size());
+            read_text(input("walk") / "rgb" / "cam0_1704067199000000000.png").size());
 }
 
 TEST_F(RosBagCli, BadBagOptionsAreClearErrors) {
-  const fs::path bag = path("walk-bz2.bag");
+  const fs::path bag = input("walk-bz2.bag");
   auto r = navaid_cli("run --recording " + q(bag) + " --out " + q(path("no-noise")) + " --no-plot");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--imu-noise"), std::string::npos) << r.output;
@@ -109,10 +118,10 @@ TEST_F(RosBagCli, BadBagOptionsAreClearErrors) {
   r = navaid_cli("convert " + q(bag) + " " + q(path("bad-preset")) + " --bag-preset kinect");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("unknown preset 'kinect'"), std::string::npos) << r.output;
-  r = navaid_cli("run --recording " + q(path("walk")) + " --out " + q(path("not-a-bag")) + " --bag-preset realsense");
+  r = navaid_cli("run --recording " + q(input("walk")) + " --out " + q(path("not-a-bag")) + " --bag-preset realsense");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("need a bag as --recording"), std::string::npos) << r.output;
-  r = navaid_cli("convert " + q(path("walk")) + " " + q(path("not-a-bag2")) + " --topic imu=/x");
+  r = navaid_cli("convert " + q(input("walk")) + " " + q(path("not-a-bag2")) + " --topic imu=/x");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("are for ROS bags"), std::string::npos) << r.output;
   r = navaid_cli("map --recording " + q(bag) + " --poses groundtruth --out " + q(path("map")));
@@ -153,7 +162,7 @@ std::vector<std::string> lines_of(const fs::path& file) {
 // A full-device run (Smart Cane: map, plans, cues) exported for RViz and read back by python3-rosbag.
 TEST_F(RosBagCli, ExportWritesTheRunForRViz) {
   const fs::path run = path("device-run");
-  const auto r = navaid_cli("run --recording " + q(path("walk")) + " --out " + q(run) + " --device smart-cane --no-plot");
+  const auto r = navaid_cli("run --recording " + q(input("walk")) + " --out " + q(run) + " --device smart-cane --no-plot");
   ASSERT_EQ(r.status, 0) << r.output;
   const fs::path bag = path("device-run.bag");
   const auto e = navaid_cli("export --run " + q(run) + " --bag " + q(bag));
@@ -175,7 +184,7 @@ TEST_F(RosBagCli, ExportWritesTheRunForRViz) {
     EXPECT_EQ(c["topics"][topic]["frame_ids"], nlohmann::json::array({"world"})) << topic;
   EXPECT_EQ(c["transforms"], nlohmann::json::parse(R"([["body", "camera"], ["world", "body"]])"));
   // body -> camera is the recording's T_B_C.
-  const auto calibration = read_text(path("walk") / "calibration.yaml");
+  const auto calibration = read_text(input("walk") / "calibration.yaml");
   const auto q_bc = c["tf_static"][0];
   EXPECT_NE(calibration.find(nlohmann::json(q_bc[0]).dump()), std::string::npos) << q_bc << calibration;
   // The last pose's covariance: position block as estimated, rotation block turned from body axes
@@ -216,7 +225,7 @@ TEST_F(RosBagCli, ExportWritesTheRunForRViz) {
   EXPECT_NE(rviz.find("Fixed Frame: world"), std::string::npos);
 
   // Bad input: not a run folder, an unknown compression, a recording that is gone.
-  auto bad = navaid_cli("export --run " + q(path("walk")) + " --bag " + q(path("x.bag")));
+  auto bad = navaid_cli("export --run " + q(input("walk")) + " --bag " + q(path("x.bag")));
   EXPECT_NE(bad.status, 0);
   EXPECT_NE(bad.output.find("estimates.csv"), std::string::npos) << bad.output;
   bad = navaid_cli("export --run " + q(run) + " --bag " + q(path("x.bag")) + " --compression zstd");

@@ -49,31 +49,32 @@ std::string table_2_1(double f, double l, double r, double forward_threshold, do
 class RumbleCli : public ::testing::Test {
  protected:
   // 3 s of the corridor with the cane rig at 160x120, 5 Hz, mapped from ground truth with the
-  // obstacle pipeline on.
+  // obstacle pipeline on (once for all the suite's test processes).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("rumble_cli");
-    const auto sim = navaid_cli("simulate --scenario corridor --mount cane --seed 3 --threads 1 --out '" +
-                                path("walk").string() +
-                                "' --set duration=3 --set sensor.camera.resolution=[160,120] --set sensor.camera.rate=5");
-    ASSERT_EQ(sim.status, 0) << sim.output;
-    const auto map = navaid_cli("map --recording '" + path("walk").string() + "' --poses groundtruth --out '" +
-                                path("map").string() + "' --set mapping.obstacles.enabled=true --png-every 0 --no-quality");
-    ASSERT_EQ(map.status, 0) << map.output;
+    inputs_ = navaid::testing::shared_cli_fixture(
+        "rumble-walk", {"simulate --scenario corridor --mount cane --seed 3 --threads 1 --out {dir}/walk"
+                        " --set duration=3 --set sensor.camera.resolution=[160,120] --set sensor.camera.rate=5",
+                        "map --recording {dir}/walk --poses groundtruth --out {dir}/map"
+                        " --set mapping.obstacles.enabled=true --png-every 0 --no-quality"});
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static fs::path path(const std::string& name) { return *dir_ / name; }
+  static fs::path input(const std::string& name) { return inputs_ / name; }
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 
 std::unique_ptr<ScratchDir> RumbleCli::dir_;
+fs::path RumbleCli::inputs_;
 
 TEST_F(RumbleCli, FicfAndCacfOnTheObstacleScansOfASimulatedCaneWalk) {
-  const auto scans = read_csv(path("map") / "obstacle_scan.csv");
+  const auto scans = read_csv(input("map") / "obstacle_scan.csv");
   ASSERT_GT(scans.size(), 5u);  // header + one row per mapped frame
   for (const auto& [function, tf, tlr] :
        {std::tuple<std::string, double, double>{"ficf", 3.0, 6.0}, std::tuple<std::string, double, double>{"cacf", 3.8, 7.0}}) {
     const fs::path out = path("rumble-" + function);
-    const auto r = navaid_cli("rumble --scans '" + (path("map") / "obstacle_scan.csv").string() + "' --function " +
+    const auto r = navaid_cli("rumble --scans '" + (input("map") / "obstacle_scan.csv").string() + "' --function " +
                               function + " --out '" + out.string() + "'");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("state changes (rumble signals):"), std::string::npos) << r.output;
@@ -110,7 +111,7 @@ TEST_F(RumbleCli, FicfAndCacfOnTheObstacleScansOfASimulatedCaneWalk) {
 // the timeline is a new pattern (left, right or both remotes), off switches them off.
 TEST_F(RumbleCli, ItsGuidanceTimelineDrivesTheRumbleRemotes) {
   const fs::path out = path("rumble-cues");
-  const auto r = navaid_cli("rumble --function ficf --scans '" + (path("map") / "obstacle_scan.csv").string() + "' --out '" +
+  const auto r = navaid_cli("rumble --function ficf --scans '" + (input("map") / "obstacle_scan.csv").string() + "' --out '" +
                             out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   const auto states = read_csv(out / "rumble.csv");
@@ -174,7 +175,7 @@ TEST_F(RumbleCli, KnownAnswersOnAHandWrittenScanFile) {
 
 TEST_F(RumbleCli, Errors) {
   const std::string out = " --out '" + path("rumble-errors").string() + "'";
-  const std::string scans = " --scans '" + (path("map") / "obstacle_scan.csv").string() + "'";
+  const std::string scans = " --scans '" + (input("map") / "obstacle_scan.csv").string() + "'";
   const auto bad_function = navaid_cli("rumble" + scans + " --function vfh" + out);
   EXPECT_EQ(bad_function.status, 2);
   EXPECT_NE(bad_function.output.find("--function must be ficf or cacf, not 'vfh'"), std::string::npos)
@@ -186,7 +187,7 @@ TEST_F(RumbleCli, Errors) {
   EXPECT_EQ(bad_range.status, 2);
   EXPECT_NE(bad_range.output.find("planning.byu.cacf.width_m"), std::string::npos) << bad_range.output;
   // A corrupt copy of the real file: a non-numeric drop-off range on its third line.
-  std::istringstream in(read_text(path("map") / "obstacle_scan.csv"));
+  std::istringstream in(read_text(input("map") / "obstacle_scan.csv"));
   std::string header, row1, row2;
   std::getline(in, header);
   std::getline(in, row1);

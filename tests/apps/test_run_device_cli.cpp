@@ -4,10 +4,6 @@
 // errors: a recording that cannot serve the device, a stage failing mid-run.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -62,31 +58,16 @@ class RunDeviceCli : public ::testing::Test {
  protected:
   // Short rendered walks (320x240 at 10 Hz, the presets' estimator rate): the Smart Cane corridor,
   // the BYU obstacle course, a W-ROMA lab walk and eLabrador's route 1, each with its default
-  // mount. CTest runs every test in a process of its own: the walks are rendered once per build of
-  // navaid into a shared folder (named by the program's time stamp, locked while it is made).
+  // mount; rendered once per build of navaid for all the suite's test processes.
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("run_device_cli");
-    const auto stamp = fs::last_write_time(NAVAID_CLI_PATH).time_since_epoch().count();
-    recordings_ = fs::temp_directory_path() / ("navaid-test-device-walks-" + std::to_string(stamp));
-    const std::string lock_file = recordings_.string() + ".lock";
-    const int lock = ::open(lock_file.c_str(), O_CREAT | O_RDWR, 0644);
-    ASSERT_GE(lock, 0) << lock_file;
-    ASSERT_EQ(::flock(lock, LOCK_EX), 0);
-    if (!fs::exists(recordings_ / "complete")) {
-      fs::remove_all(recordings_);
-      for (const auto& [scenario, seconds] : std::vector<std::pair<std::string, int>>{
-               {"corridor", 6}, {"obstacle-course", 6}, {"lab-walk-1", 6}, {"route1", 4}}) {
-        const auto sim = navaid_cli("simulate --scenario " + scenario + " --seed 3 --threads 2 --out '" +
-                                    recording(scenario).string() + "' --set duration=" + std::to_string(seconds) +
-                                    " --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=10");
-        if (sim.status != 0) {
-          ::close(lock);
-          FAIL() << sim.output;
-        }
-      }
-      write_text(recordings_ / "complete", "");
-    }
-    ::close(lock);
+    std::vector<std::string> commands;
+    for (const auto& [scenario, seconds] : std::vector<std::pair<std::string, int>>{
+             {"corridor", 6}, {"obstacle-course", 6}, {"lab-walk-1", 6}, {"route1", 4}})
+      commands.push_back("simulate --scenario " + scenario + " --seed 3 --threads 2 --out {dir}/sim-" + scenario +
+                         " --set duration=" + std::to_string(seconds) +
+                         " --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=10");
+    recordings_ = navaid::testing::shared_cli_fixture("device-walks", commands);
   }
   static void TearDownTestSuite() { dir_.reset(); }
 

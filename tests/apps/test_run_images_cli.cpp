@@ -25,26 +25,27 @@ namespace {
 class RunImagesCli : public ::testing::Test {
  protected:
   // One rendered walk for the suite: 8 s of lab-walk-1 (1 s still start), hand mount, 320x240 at
-  // 15 Hz to keep it quick.
+  // 15 Hz to keep it quick (once for all the suite's test processes).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("run_images_cli");
-    const auto sim = navaid_cli("simulate --scenario lab-walk-1 --mount hand --seed 5 --threads 1 --out '" +
-                                recording().string() +
-                                "' --set duration=8 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15");
-    ASSERT_EQ(sim.status, 0) << sim.output;
+    inputs_ = navaid::testing::shared_cli_fixture(
+        "images-walk", {"simulate --scenario lab-walk-1 --mount hand --seed 5 --threads 1 --out {dir}/walk"
+                        " --set duration=8 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15"});
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
-  static fs::path recording() { return *dir_ / "walk"; }
+  static fs::path recording() { return inputs_ / "walk"; }
   static fs::path path(const std::string& name) { return *dir_ / name; }
   static navaid::testing::CliRun run(const fs::path& rec, const fs::path& out, const std::string& extra = {}) {
     return navaid_cli("run --recording '" + rec.string() + "' --out '" + out.string() + "'" + extra);
   }
 
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 
 std::unique_ptr<ScratchDir> RunImagesCli::dir_;
+fs::path RunImagesCli::inputs_;
 
 TEST_F(RunImagesCli, TracksTheImagesAndEstimatesTheWalk) {
   const fs::path out = path("run");

@@ -22,17 +22,17 @@ namespace {
 
 class RunRealtimeCli : public ::testing::Test {
  protected:
-  // 5 s of lab-walk-1 (1 s still start), hand mount, rendered at 320x240 and 15 Hz to keep it quick.
+  // 5 s of lab-walk-1 (1 s still start), hand mount, rendered at 320x240 and 15 Hz to keep it quick
+  // (once for all the suite's test processes).
   static void SetUpTestSuite() {
     dir_ = std::make_unique<ScratchDir>("run_realtime_cli");
-    const auto sim = navaid_cli("simulate --scenario lab-walk-1 --mount hand --seed 3 --threads 1 --out '" +
-                                images().string() +
-                                "' --set duration=5 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15");
-    ASSERT_EQ(sim.status, 0) << sim.output;
+    inputs_ = navaid::testing::shared_cli_fixture(
+        "realtime-walk", {"simulate --scenario lab-walk-1 --mount hand --seed 3 --threads 1 --out {dir}/walk"
+                          " --set duration=5 --set sensor.camera.resolution=[320,240] --set sensor.camera.rate=15"});
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
-  static fs::path images() { return *dir_ / "walk"; }
+  static fs::path images() { return inputs_ / "walk"; }
   static fs::path path(const std::string& name) { return *dir_ / name; }
   static navaid::testing::CliRun run(const fs::path& rec, const fs::path& out, const std::string& extra = {}) {
     return navaid_cli("run --recording '" + rec.string() + "' --out '" + out.string() + "'" + extra);
@@ -40,9 +40,11 @@ class RunRealtimeCli : public ::testing::Test {
   static nlohmann::json summary(const fs::path& out) { return nlohmann::json::parse(read_text(out / "summary.json")); }
 
   static std::unique_ptr<ScratchDir> dir_;
+  static fs::path inputs_;
 };
 
 std::unique_ptr<ScratchDir> RunRealtimeCli::dir_;
+fs::path RunRealtimeCli::inputs_;
 
 std::size_t data_rows(const std::string& csv) {
   std::istringstream in(csv);

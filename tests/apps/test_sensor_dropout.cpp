@@ -56,22 +56,13 @@ void PrintTo(const Fault& f, std::ostream* os) { *os << f.kind; }
 
 std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
-fs::path simulate_route1(const ScratchDir& root, int duration_s) {
-  const fs::path out = root / ("route1-" + std::to_string(duration_s) + "s");
-  const CliRun run = navaid_cli("simulate --scenario route1 --set simulation.mode=features --set duration=" +
-                                std::to_string(duration_s) + " --seed 3 --threads 1 --out " + quote(out));
-  if (run.status != 0) throw std::runtime_error("cannot simulate the base recording: " + run.output);
-  return out;
-}
-
-const fs::path& base_recording(bool gps_walk) {
-  static const ScratchDir root("sensor-dropout-base");
-  if (gps_walk) {
-    static const fs::path rec = simulate_route1(root, 120);
-    return rec;
-  }
-  static const fs::path rec = simulate_route1(root, 30);
-  return rec;
+/// The base walk, simulated once for all the matrix's test processes.
+fs::path base_recording(bool gps_walk) {
+  const std::string seconds = gps_walk ? "120" : "30";
+  const fs::path folder = navaid::testing::shared_cli_fixture(
+      "dropout-route1-" + seconds + "s", {"simulate --scenario route1 --set simulation.mode=features --set duration=" +
+                                             seconds + " --seed 3 --threads 1 --out {dir}/recording"});
+  return folder / "recording";
 }
 
 long long first_time_ns(const fs::path& rec) { return std::stoll(split_csv(lines_of(rec / "imu.csv").at(1)).at(0)); }

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <cstdlib>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "navaid/core/calibration.hpp"
 
@@ -51,6 +53,20 @@ struct CliRun {
 };
 /// Runs `navaid <args>` (args are passed to the shell as written).
 CliRun navaid_cli(const std::string& args, bool with_stderr = true);
+
+/// A folder of inputs that all test processes of a build share (a simulated walk, a run of it).
+/// CTest runs every test in a process of its own, so a suite's SetUpTestSuite would make its inputs
+/// again for each test: shared_fixture makes them once per build of the navaid program. `make`
+/// fills the folder under a file lock; later callers with the same `name` and `recipe` (the
+/// commands `make` runs, so that a changed recipe is made anew) wait for it and read what it made.
+/// Throws std::runtime_error, naming the fixture, when `make` fails; the next caller tries again.
+/// Tests read the folder and never write into it: a test that edits an input copies it first.
+std::filesystem::path shared_fixture(const std::string& name, const std::string& recipe,
+                                     const std::function<void(const std::filesystem::path&)>& make);
+
+/// A shared_fixture made by navaid commands, run in order; "{dir}" in a command stands for the
+/// fixture's folder (quoted). A command that fails throws with its output.
+std::filesystem::path shared_cli_fixture(const std::string& name, const std::vector<std::string>& commands);
 
 /// Runs `f` and returns the E it throws. When it throws nothing, records a test failure that
 /// names `context` and returns nullopt; an exception of another type propagates.
