@@ -27,7 +27,7 @@ done
 targets=("${HARNESSES[@]}")
 [ "$SIMULATED" = 0 ] || targets+=(navaid)
 
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --sanitizers
 bash scripts/sanitize-build.sh "${targets[@]}"
 
 # Seeds: real data, fixtures, and small recordings the simulator writes once (features and images).

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs navaid's build, test and plotting dependencies from Debian 12 packages.
 # Idempotent: packages already present are skipped, so a second run costs a few seconds.
+# Usage: install-deps.sh [--sanitizers]
+#   --sanitizers  also clang, LLVM and libFuzzer for the sanitizer and fuzzing tree
+#                 (scripts/test-sanitizers.sh, scripts/fuzz.sh); the README's commands need none.
 set -euo pipefail
 
 PACKAGES=(
@@ -28,9 +31,14 @@ PACKAGES=(
   snakemake munge slurmctld slurmd slurm-client
   chromium
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang clang-14 libfuzzer-14-dev llvm-14
   python3 python3-matplotlib python3-numpy
 )
+if [ "${1:-}" = "--sanitizers" ]; then
+  PACKAGES+=(clang clang-14 libfuzzer-14-dev llvm-14)
+elif [ $# -gt 0 ]; then
+  echo "install-deps: unknown argument '$1' (usage: install-deps.sh [--sanitizers])" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -12,7 +12,7 @@ BUILD=${NAVAID_SANITIZE_BUILD:-build-sanitize}
 IO_FUZZERS=(fuzz_nmea_capture fuzz_navaid_recording fuzz_euroc fuzz_tum_rgbd fuzz_tum_trajectory fuzz_kalibr fuzz_ros_bag
   fuzz_occupancy_map)
 start=$(date +%s)
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --sanitizers
 if [ "$CI_SUBSET" = 1 ]; then
   bash scripts/sanitize-build.sh navaid_core_tests navaid_io_tests "${IO_FUZZERS[@]}"
 else

@@ -6,7 +6,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr NameTable<DeviceKind, 4> kNames{{
+constexpr NameTable<DeviceKind, 4> kActuatorPatternNames{{
     {DeviceKind::kBelt, "belt"},
     {DeviceKind::kHand, "hand"},
     {DeviceKind::kRumble, "rumble"},
@@ -15,7 +15,7 @@ constexpr NameTable<DeviceKind, 4> kNames{{
 
 }  // namespace
 
-std::string_view to_string(DeviceKind kind) { return enum_name(kNames, kind); }
-std::optional<DeviceKind> device_kind_from_string(std::string_view name) { return enum_value(kNames, name); }
+std::string_view to_string(DeviceKind kind) { return enum_name(kActuatorPatternNames, kind); }
+std::optional<DeviceKind> device_kind_from_string(std::string_view name) { return enum_value(kActuatorPatternNames, name); }
 
 }  // namespace navaid::interaction

@@ -12,7 +12,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr std::array<std::string_view, BeltAdapter::kCount> kNames{"left", "front-left", "front", "front-right",
+constexpr std::array<std::string_view, BeltAdapter::kCount> kBeltAdapterNames{"left", "front-left", "front", "front-right",
                                                                    "right"};
 
 void check(const BeltConfig& c) {
@@ -29,35 +29,35 @@ void check(const BeltConfig& c) {
 }  // namespace
 
 namespace {
-const BeltConfig kDefaults;
-const ConfigKey<double> kRefresh{"interaction.belt.refresh_hz", kDefaults.refresh_hz, {0.1, 20.0},
+const BeltConfig kBeltAdapterDefaults;
+const ConfigKey<double> kBeltAdapterRefresh{"interaction.belt.refresh_hz", kBeltAdapterDefaults.refresh_hz, {0.1, 20.0},
                                  "the belt's pattern refresh rate [Hz] (eLabrador: 1)"};
-const ConfigKey<double> kHoldMargin{"interaction.belt.hold_margin", kDefaults.hold_margin, {0.01, 1.0},
+const ConfigKey<double> kBeltAdapterHoldMargin{"interaction.belt.hold_margin", kBeltAdapterDefaults.hold_margin, {0.01, 1.0},
                                     "a pattern is held for the refresh period times (1 + this)"};
-const ConfigKey<int> kLevelLow{"interaction.belt.level_low", kDefaults.level_low, 1, 1000,
+const ConfigKey<int> kLevelLow{"interaction.belt.level_low", kBeltAdapterDefaults.level_low, 1, 1000,
                                "vibration level of the low intensity mode [per mille]"};
-const ConfigKey<int> kLevelHigh{"interaction.belt.level_high", kDefaults.level_high, 1, 1000,
+const ConfigKey<int> kLevelHigh{"interaction.belt.level_high", kBeltAdapterDefaults.level_high, 1, 1000,
                                 "vibration level of the high intensity mode [per mille]"};
 const ConfigKey<std::string> kIntensity{"interaction.belt.intensity", std::nullopt, {"low", "high"},
                                         "the user's intensity mode; absent: each cue's own intensity"};
-const ConfigKey<int> kPulseOn{"interaction.belt.pulse_on_ms", kDefaults.pulse_on_ms, 10, 5000,
+const ConfigKey<int> kPulseOn{"interaction.belt.pulse_on_ms", kBeltAdapterDefaults.pulse_on_ms, 10, 5000,
                               "on-course: the front vibrator's on time [ms]"};
-const ConfigKey<int> kPulseOff{"interaction.belt.pulse_off_ms", kDefaults.pulse_off_ms, 10, 5000,
+const ConfigKey<int> kPulseOff{"interaction.belt.pulse_off_ms", kBeltAdapterDefaults.pulse_off_ms, 10, 5000,
                                "on-course: the front vibrator's off time [ms]"};
-const ConfigKey<int> kUrgentOn{"interaction.belt.urgent_on_ms", kDefaults.urgent_on_ms, 10, 5000,
+const ConfigKey<int> kUrgentOn{"interaction.belt.urgent_on_ms", kBeltAdapterDefaults.urgent_on_ms, 10, 5000,
                                "stop and obstacle: the fast pulse's on time [ms]"};
-const ConfigKey<int> kUrgentOff{"interaction.belt.urgent_off_ms", kDefaults.urgent_off_ms, 10, 5000,
+const ConfigKey<int> kUrgentOff{"interaction.belt.urgent_off_ms", kBeltAdapterDefaults.urgent_off_ms, 10, 5000,
                                 "stop and obstacle: the fast pulse's off time [ms]"};
-const ConfigKey<int> kArriveOn{"interaction.belt.arrive_on_ms", kDefaults.arrive_on_ms, 10, 5000,
+const ConfigKey<int> kArriveOn{"interaction.belt.arrive_on_ms", kBeltAdapterDefaults.arrive_on_ms, 10, 5000,
                                "arrival: the length of each of two pulses [ms]"};
-const ConfigKey<int> kArriveOff{"interaction.belt.arrive_off_ms", kDefaults.arrive_off_ms, 10, 5000,
+const ConfigKey<int> kArriveOff{"interaction.belt.arrive_off_ms", kBeltAdapterDefaults.arrive_off_ms, 10, 5000,
                                 "arrival: the pause between the two pulses [ms]"};
 }  // namespace
 
 ConfigSchema belt_config_schema() {
   return ConfigSchema()
-      .add(kRefresh)
-      .add(kHoldMargin)
+      .add(kBeltAdapterRefresh)
+      .add(kBeltAdapterHoldMargin)
       .add(kLevelLow)
       .add(kLevelHigh)
       .add(kIntensity)
@@ -71,8 +71,8 @@ ConfigSchema belt_config_schema() {
 
 BeltConfig read_belt_config(const Config& config) {
   BeltConfig c;
-  c.refresh_hz = get(config, kRefresh);
-  c.hold_margin = get(config, kHoldMargin);
+  c.refresh_hz = get(config, kBeltAdapterRefresh);
+  c.hold_margin = get(config, kBeltAdapterHoldMargin);
   c.level_low = get(config, kLevelLow);
   c.level_high = get(config, kLevelHigh);
   if (c.level_low > c.level_high) {
@@ -99,7 +99,7 @@ BeltAdapter::BeltAdapter(const BeltConfig& config) : config_(config) {
 
 std::string_view BeltAdapter::actuator_name(int index) const {
   if (index < 0 || index >= kCount) throw std::out_of_range("belt: no actuator " + std::to_string(index));
-  return kNames[static_cast<std::size_t>(index)];
+  return kBeltAdapterNames[static_cast<std::size_t>(index)];
 }
 
 int BeltAdapter::level_for(CueIntensity cue_intensity) const {

@@ -26,22 +26,22 @@ constexpr NameTable<CueModality, 3> kModalityNames{{
 }  // namespace
 
 namespace {
-const CueGeneratorConfig kDefaults;
+const CueGeneratorConfig kCueGeneratorDefaults;
 const ConfigKey<double> kOnCourse{"interaction.cues.on_course_deg", 10.0, {1.0, 45.0},
                                   "heading errors below this are on course [deg]"};
 const ConfigKey<double> kTurn{"interaction.cues.turn_deg", 30.0, {1.0, 90.0},
                               "heading errors above this are turns, between the two veers [deg] (> on_course_deg)"};
 const ConfigKey<double> kHysteresis{"interaction.cues.hysteresis_deg", 3.0, {0.0, 10.0},
                                     "margin a heading must cross to change class [deg]"};
-const ConfigKey<double> kMinConfidence{"interaction.cues.min_confidence", kDefaults.min_confidence, {0.0, 1.0},
+const ConfigKey<double> kMinConfidence{"interaction.cues.min_confidence", kCueGeneratorDefaults.min_confidence, {0.0, 1.0},
                                        "below this guidance confidence the user is told to wait (locating)"};
-const ConfigKey<double> kLocatingRepeat{"interaction.cues.locating_repeat_s", kDefaults.locating_repeat_s, {1.0, 120.0},
+const ConfigKey<double> kLocatingRepeat{"interaction.cues.locating_repeat_s", kCueGeneratorDefaults.locating_repeat_s, {1.0, 120.0},
                                         "while locating, the message is repeated this often [s]"};
-const ConfigKey<double> kTtlHaptic{"interaction.cues.ttl_haptic_s", kDefaults.ttl_haptic_s, {0.1, 60.0},
+const ConfigKey<double> kTtlHaptic{"interaction.cues.ttl_haptic_s", kCueGeneratorDefaults.ttl_haptic_s, {0.1, 60.0},
                                    "a direction cue older than this is stale [s]"};
-const ConfigKey<double> kTtlSpeech{"interaction.cues.ttl_speech_s", kDefaults.ttl_speech_s, {0.1, 60.0},
+const ConfigKey<double> kTtlSpeech{"interaction.cues.ttl_speech_s", kCueGeneratorDefaults.ttl_speech_s, {0.1, 60.0},
                                    "a spoken cue not started within this is dropped [s]"};
-const ConfigKey<double> kTtlSystem{"interaction.cues.ttl_system_s", kDefaults.ttl_system_s, {0.1, 60.0},
+const ConfigKey<double> kTtlSystem{"interaction.cues.ttl_system_s", kCueGeneratorDefaults.ttl_system_s, {0.1, 60.0},
                                    "a system message not started within this is dropped [s]"};
 const ConfigKey<std::string> kModality{"interaction.cues.modality", std::string("both"), enum_names(kModalityNames),
                                         "cue channels: both, haptic only or audio only"};

@@ -58,21 +58,21 @@ std::string_view to_string(CueChannel channel) { return enum_name(kChannelNames,
 std::string_view to_string(CueOutcome outcome) { return enum_name(kOutcomeNames, outcome); }
 
 namespace {
-const CuePolicyConfig kDefaults;
+const CuePolicyConfig kCueSchedulerDefaults;
 constexpr Range kSeconds{0.0, 60.0};
-const ConfigKey<double> kStopMinGap{"interaction.policy.stop_min_gap_s", kDefaults.stop_min_gap_s, kSeconds,
+const ConfigKey<double> kStopMinGap{"interaction.policy.stop_min_gap_s", kCueSchedulerDefaults.stop_min_gap_s, kSeconds,
                                     "a stop cue at most once per this [s] (CaBot: 1)"};
-const ConfigKey<double> kTurnMinGap{"interaction.policy.turn_min_gap_s", kDefaults.turn_min_gap_s, kSeconds,
+const ConfigKey<double> kTurnMinGap{"interaction.policy.turn_min_gap_s", kCueSchedulerDefaults.turn_min_gap_s, kSeconds,
                                     "a turn cue at most once per this [s] (CaBot: 5)"};
-const ConfigKey<double> kHandMessagePeriod{"interaction.policy.hand_message_period_s", kDefaults.hand_message_period_s,
+const ConfigKey<double> kHandMessagePeriod{"interaction.policy.hand_message_period_s", kCueSchedulerDefaults.hand_message_period_s,
                                            kSeconds, "a hand-guidance message at most once per this [s] (W-ROMA: 2)"};
-const ConfigKey<double> kSpeechMinGap{"interaction.policy.speech_min_gap_s", kDefaults.speech_min_gap_s, kSeconds,
+const ConfigKey<double> kSpeechMinGap{"interaction.policy.speech_min_gap_s", kCueSchedulerDefaults.speech_min_gap_s, kSeconds,
                                       "least time between two spoken messages [s] (the Augmented Cane: 2.3)"};
-const ConfigKey<double> kDuplicateWindow{"interaction.policy.duplicate_window_s", kDefaults.duplicate_window_s, kSeconds,
+const ConfigKey<double> kDuplicateWindow{"interaction.policy.duplicate_window_s", kCueSchedulerDefaults.duplicate_window_s, kSeconds,
                                          "the same words are not spoken again within this [s]"};
-const ConfigKey<double> kStopHold{"interaction.policy.stop_hold_s", kDefaults.stop_hold_s, kSeconds,
+const ConfigKey<double> kStopHold{"interaction.policy.stop_hold_s", kCueSchedulerDefaults.stop_hold_s, kSeconds,
                                   "lower haptic cues wait this long after a stop [s]"};
-const ConfigKey<int> kInterruptPriority{"interaction.policy.interrupt_priority", kDefaults.interrupt_priority, 0, 1000,
+const ConfigKey<int> kInterruptPriority{"interaction.policy.interrupt_priority", kCueSchedulerDefaults.interrupt_priority, 0, 1000,
                                         "cues of at least this priority interrupt a message in progress"};
 }  // namespace
 

@@ -44,18 +44,18 @@ nlohmann::ordered_json decoder_json(const DecoderCounters& c) {
 }  // namespace
 
 namespace {
-const LinkConfig kDefaults;
-const ConfigKey<double> kHeartbeat{"interaction.link.heartbeat_s", kDefaults.heartbeat_s, {0.02, 0.5},
+const LinkConfig kDeviceLinkDefaults;
+const ConfigKey<double> kHeartbeat{"interaction.link.heartbeat_s", kDeviceLinkDefaults.heartbeat_s, {0.02, 0.5},
                                    "a heartbeat goes out when nothing was sent for this long [s]"};
-const ConfigKey<double> kTimeout{"interaction.link.timeout_s", kDefaults.timeout_s, {0.1, 30.0},
+const ConfigKey<double> kTimeout{"interaction.link.timeout_s", kDeviceLinkDefaults.timeout_s, {0.1, 30.0},
                                  "no reply for this long: the link is lost [s] (> heartbeat_s)"};
-const ConfigKey<double> kAckTimeout{"interaction.link.ack_timeout_s", kDefaults.ack_timeout_s, {0.001, 5.0},
+const ConfigKey<double> kAckTimeout{"interaction.link.ack_timeout_s", kDeviceLinkDefaults.ack_timeout_s, {0.001, 5.0},
                                     "a pattern frame without ACK for this long is sent again [s]"};
-const ConfigKey<int> kMaxRetransmits{"interaction.link.max_retransmits", kDefaults.max_retransmits, 0, 20,
+const ConfigKey<int> kMaxRetransmits{"interaction.link.max_retransmits", kDeviceLinkDefaults.max_retransmits, 0, 20,
                                      "retransmissions of one frame before it is given up"};
-const ConfigKey<double> kReconnect{"interaction.link.reconnect_s", kDefaults.reconnect_s, {0.01, 60.0},
+const ConfigKey<double> kReconnect{"interaction.link.reconnect_s", kDeviceLinkDefaults.reconnect_s, {0.01, 60.0},
                                    "while the port is gone, try reopening it this often [s]"};
-const ConfigKey<int> kBaud{kBaudKey, kDefaults.baud, 1, 4000000, "serial baud rate (a standard rate)"};
+const ConfigKey<int> kBaud{kBaudKey, kDeviceLinkDefaults.baud, 1, 4000000, "serial baud rate (a standard rate)"};
 }  // namespace
 
 ConfigSchema link_config_schema() {

@@ -17,7 +17,7 @@ namespace {
 using planning::HandDirection;
 using A = HandUnitAdapter;
 
-constexpr std::array<std::string_view, A::kCount> kNames{"up", "down", "left", "right", "forward", "backward"};
+constexpr std::array<std::string_view, A::kCount> kHandUnitAdapterNames{"up", "down", "left", "right", "forward", "backward"};
 
 /// The motors of a direction: one, or the pair for a diagonal (paper §III); none for hold.
 std::vector<int> motors_of(HandDirection d) {
@@ -50,13 +50,13 @@ void check(const HandUnitConfig& c) {
 }  // namespace
 
 namespace {
-const HandUnitConfig kDefaults;
-const ConfigKey<double> kPeriod{"interaction.hand.period_s", kDefaults.period_s, {0.2, 10.0},
+const HandUnitConfig kHandUnitAdapterDefaults;
+const ConfigKey<double> kPeriod{"interaction.hand.period_s", kHandUnitAdapterDefaults.period_s, {0.2, 10.0},
                                 "the hand unit takes a command this often [s] (W-ROMA: 2)"};
-const ConfigKey<double> kHold{"interaction.hand.hold_s", kDefaults.hold_s, {0.05, 10.0},
+const ConfigKey<double> kHold{"interaction.hand.hold_s", kHandUnitAdapterDefaults.hold_s, {0.05, 10.0},
                               "each hand-unit pattern is held this long [s] (<= period_s)"};
-const ConfigKey<int> kLevel{"interaction.hand.level", kDefaults.level, 1, 1000, "hand-unit motor level [per mille]"};
-const ConfigKey<int> kArrivePulse{"interaction.hand.arrive_pulse_ms", kDefaults.arrive_pulse_ms, 10, 5000,
+const ConfigKey<int> kLevel{"interaction.hand.level", kHandUnitAdapterDefaults.level, 1, 1000, "hand-unit motor level [per mille]"};
+const ConfigKey<int> kArrivePulse{"interaction.hand.arrive_pulse_ms", kHandUnitAdapterDefaults.arrive_pulse_ms, 10, 5000,
                                   "on arrival all six motors pulse this long [ms]"};
 }  // namespace
 
@@ -81,7 +81,7 @@ HandUnitAdapter::HandUnitAdapter(const HandUnitConfig& config) : config_(config)
 
 std::string_view HandUnitAdapter::actuator_name(int index) const {
   if (index < 0 || index >= kCount) throw std::out_of_range("hand: no actuator " + std::to_string(index));
-  return kNames[static_cast<std::size_t>(index)];
+  return kHandUnitAdapterNames[static_cast<std::size_t>(index)];
 }
 
 std::optional<ActuatorPattern> HandUnitAdapter::pattern(const Cue& cue) const {

@@ -12,23 +12,23 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr std::array<std::string_view, RumbleAdapter::kCount> kNames{"left", "right"};
+constexpr std::array<std::string_view, RumbleAdapter::kCount> kRumbleAdapterNames{"left", "right"};
 
 }  // namespace
 
 namespace {
-const ConfigKey<double> kRefresh{"interaction.rumble.refresh_hz", RumbleConfig{}.refresh_hz, {1.0, 100.0},
+const ConfigKey<double> kRumbleAdapterRefresh{"interaction.rumble.refresh_hz", RumbleConfig{}.refresh_hz, {1.0, 100.0},
                                  "the rumble remotes' refresh rate [Hz]"};
-const ConfigKey<double> kHoldMargin{"interaction.rumble.hold_margin", RumbleConfig{}.hold_margin, {0.01, 1.0},
+const ConfigKey<double> kRumbleAdapterHoldMargin{"interaction.rumble.hold_margin", RumbleConfig{}.hold_margin, {0.01, 1.0},
                                     "a rumble is held for the refresh period times (1 + this)"};
 }  // namespace
 
-ConfigSchema rumble_config_schema() { return ConfigSchema().add(kRefresh).add(kHoldMargin); }
+ConfigSchema rumble_config_schema() { return ConfigSchema().add(kRumbleAdapterRefresh).add(kRumbleAdapterHoldMargin); }
 
 RumbleConfig read_rumble_config(const Config& config) {
   RumbleConfig c;
-  c.refresh_hz = get(config, kRefresh);
-  c.hold_margin = get(config, kHoldMargin);
+  c.refresh_hz = get(config, kRumbleAdapterRefresh);
+  c.hold_margin = get(config, kRumbleAdapterHoldMargin);
   return c;
 }
 
@@ -40,7 +40,7 @@ RumbleAdapter::RumbleAdapter(const RumbleConfig& config) : config_(config) {
 
 std::string_view RumbleAdapter::actuator_name(int index) const {
   if (index < 0 || index >= kCount) throw std::out_of_range("rumble: no actuator " + std::to_string(index));
-  return kNames[static_cast<std::size_t>(index)];
+  return kRumbleAdapterNames[static_cast<std::size_t>(index)];
 }
 
 std::optional<ActuatorPattern> RumbleAdapter::pattern(const Cue& cue) const {

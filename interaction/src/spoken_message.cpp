@@ -6,7 +6,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr NameTable<MessageCategory, 3> kNames{{
+constexpr NameTable<MessageCategory, 3> kSpokenMessageNames{{
     {MessageCategory::kRoute, "route"},
     {MessageCategory::kAction, "action"},
     {MessageCategory::kSystem, "system"},
@@ -14,6 +14,6 @@ constexpr NameTable<MessageCategory, 3> kNames{{
 
 }  // namespace
 
-std::string_view to_string(MessageCategory category) { return enum_name(kNames, category); }
+std::string_view to_string(MessageCategory category) { return enum_name(kSpokenMessageNames, category); }
 
 }  // namespace navaid::interaction

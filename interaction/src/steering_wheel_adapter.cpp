@@ -13,25 +13,24 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
 namespace {
-const ConfigKey<double> kRefresh{"interaction.wheel.refresh_hz", SteeringWheelConfig{}.refresh_hz, {1.0, 100.0},
+const ConfigKey<double> kSteeringWheelAdapterRefresh{"interaction.wheel.refresh_hz", SteeringWheelConfig{}.refresh_hz, {1.0, 100.0},
                                  "the steering wheel's refresh rate [Hz] (the planner's re-planning rate)"};
-const ConfigKey<double> kHoldMargin{"interaction.wheel.hold_margin", SteeringWheelConfig{}.hold_margin, {0.01, 1.0},
+const ConfigKey<double> kSteeringWheelAdapterHoldMargin{"interaction.wheel.hold_margin", SteeringWheelConfig{}.hold_margin, {0.01, 1.0},
                                     "a steering command is held for the refresh period times (1 + this)"};
 const ConfigKey<double> kMaxSteering{"interaction.wheel.max_steering_deg", SteeringWheelConfig{}.max_steering_deg,
                                      {1.0, 90.0}, "largest commanded steering angle [deg]"};
 }  // namespace
 
-ConfigSchema steering_wheel_config_schema() { return ConfigSchema().add(kRefresh).add(kHoldMargin).add(kMaxSteering); }
+ConfigSchema steering_wheel_config_schema() { return ConfigSchema().add(kSteeringWheelAdapterRefresh).add(kSteeringWheelAdapterHoldMargin).add(kMaxSteering); }
 
 SteeringWheelConfig read_steering_wheel_config(const Config& config) {
   SteeringWheelConfig c;
-  c.refresh_hz = get(config, kRefresh);
-  c.hold_margin = get(config, kHoldMargin);
+  c.refresh_hz = get(config, kSteeringWheelAdapterRefresh);
+  c.hold_margin = get(config, kSteeringWheelAdapterHoldMargin);
   c.max_steering_deg = get(config, kMaxSteering);
   return c;
 }
@@ -58,7 +57,7 @@ std::optional<ActuatorPattern> SteeringWheelAdapter::pattern(const Cue& cue) con
       // The PI controller's output; without it (another planner) the walking direction itself.
       const std::optional<double> steer = cue.steering_rad ? cue.steering_rad : cue.direction_rad;
       if (!steer || !std::isfinite(*steer)) return std::nullopt;
-      const double limit = config_.max_steering_deg * kPi / 180.0;
+      const double limit = config_.max_steering_deg * M_PI / 180.0;
       const double mrad = std::round(std::clamp(*steer, -limit, limit) * 1000.0);
       p.commands.push_back(detail::command(kSteering, static_cast<int>(mrad), 0, 0, hold_ms_));
       return p;

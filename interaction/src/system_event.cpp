@@ -6,7 +6,7 @@ namespace navaid::interaction {
 
 namespace {
 
-constexpr NameTable<SystemEventKind, 9> kNames{{
+constexpr NameTable<SystemEventKind, 9> kSystemEventNames{{
     {SystemEventKind::kInitialized, "initialized"},
     {SystemEventKind::kEstimatorMode, "estimator_mode"},
     {SystemEventKind::kNetworkLost, "network_lost"},
@@ -20,9 +20,9 @@ constexpr NameTable<SystemEventKind, 9> kNames{{
 
 }  // namespace
 
-std::string_view to_string(SystemEventKind kind) { return enum_name(kNames, kind); }
+std::string_view to_string(SystemEventKind kind) { return enum_name(kSystemEventNames, kind); }
 std::optional<SystemEventKind> system_event_kind_from_string(std::string_view name) {
-  return enum_value(kNames, name);
+  return enum_value(kSystemEventNames, name);
 }
 
 }  // namespace navaid::interaction

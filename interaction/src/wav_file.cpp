@@ -205,7 +205,6 @@ AudioBuffer resample(const AudioBuffer& audio, int rate_hz) {
   const double fc = 0.5 * std::min(1.0, ratio) * (ratio < 1.0 ? 0.95 : 1.0);
   const double half_width = kZeroCrossings / (2.0 * fc);
   const double i0_beta = bessel_i0(kBeta);
-  constexpr double kPi = 3.14159265358979323846;
 
   AudioBuffer out;
   out.sample_rate_hz = rate_hz;
@@ -221,7 +220,7 @@ AudioBuffer resample(const AudioBuffer& audio, int rate_hz) {
       const double r = d / half_width;
       const double w = bessel_i0(kBeta * std::sqrt(std::max(0.0, 1.0 - r * r))) / i0_beta;
       const double arg = 2.0 * fc * d;
-      const double sinc = std::abs(arg) < 1e-12 ? 1.0 : std::sin(kPi * arg) / (kPi * arg);
+      const double sinc = std::abs(arg) < 1e-12 ? 1.0 : std::sin(M_PI * arg) / (M_PI * arg);
       acc += static_cast<double>(x[static_cast<std::size_t>(k)]) * 2.0 * fc * sinc * w;
     }
     // A band-limited signal near full scale can overshoot by a few LSB (Gibbs); saturate it.

@@ -59,7 +59,7 @@ const SemanticCollisionTable& default_semantic_collision_table() {
 }
 
 namespace {
-const ConfigKey<double> kOccupiedThreshold{"mapping.collision.occupied_threshold", CollisionConfig{}.occupied_threshold,
+const ConfigKey<double> kCollisionMapOccupiedThreshold{"mapping.collision.occupied_threshold", CollisionConfig{}.occupied_threshold,
                                            {0.01, 1.0}, "voxels with occupancy at or above this enter eq. (9)"};
 const ConfigKey<double> kMinRelativeHeight{"mapping.collision.min_relative_height_m",
                                            CollisionConfig{}.min_relative_height_m, {-10.0, 10.0},
@@ -72,12 +72,12 @@ const ConfigMapKey kSemanticTable{kTableKey, "probability in [0, 1] per semantic
 }  // namespace
 
 ConfigSchema collision_config_schema() {
-  return ConfigSchema().add(kOccupiedThreshold).add(kMinRelativeHeight).add(kMaxRelativeHeight).add(kSemanticTable);
+  return ConfigSchema().add(kCollisionMapOccupiedThreshold).add(kMinRelativeHeight).add(kMaxRelativeHeight).add(kSemanticTable);
 }
 
 CollisionConfig read_collision_config(const Config& config) {
   CollisionConfig c;
-  c.occupied_threshold = get(config, kOccupiedThreshold);
+  c.occupied_threshold = get(config, kCollisionMapOccupiedThreshold);
   c.min_relative_height_m = get(config, kMinRelativeHeight);
   c.max_relative_height_m = get(config, kMaxRelativeHeight);
   if (c.min_relative_height_m > c.max_relative_height_m) {

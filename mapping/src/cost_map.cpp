@@ -11,14 +11,14 @@
 namespace navaid::mapping {
 
 namespace {
-const CostMapConfig kDefaults;
-const ConfigKey<double> kUnknownCost{"mapping.cost.unknown_cost", kDefaults.unknown_cost, {0.0, 1.0},
+const CostMapConfig kCostMapDefaults;
+const ConfigKey<double> kUnknownCost{"mapping.cost.unknown_cost", kCostMapDefaults.unknown_cost, {0.0, 1.0},
                                      "cost of a cell never seen occupied or free (not free, not an obstacle)"};
-const ConfigKey<double> kObstacleThreshold{"mapping.cost.obstacle_threshold", kDefaults.obstacle_threshold, {0.0, 0.999},
+const ConfigKey<double> kObstacleThreshold{"mapping.cost.obstacle_threshold", kCostMapDefaults.obstacle_threshold, {0.0, 0.999},
                                            "a cell is an obstacle at cost above this (eLabrador Alg. 2: 0.9)"};
-const ConfigKey<double> kInflationBase{"mapping.inflation.base_radius_m", kDefaults.inflation_base_radius_m, {0.0, 2.0},
+const ConfigKey<double> kInflationBase{"mapping.inflation.base_radius_m", kCostMapDefaults.inflation_base_radius_m, {0.0, 2.0},
                                        "inflation radius at zero position uncertainty [m]"};
-const ConfigKey<double> kInflationKSigma{"mapping.inflation.k_sigma", kDefaults.inflation_k_sigma, {0.0, 10.0},
+const ConfigKey<double> kInflationKSigma{"mapping.inflation.k_sigma", kCostMapDefaults.inflation_k_sigma, {0.0, 10.0},
                                          "inflation grows by this times the horizontal position sigma"};
 }  // namespace
 

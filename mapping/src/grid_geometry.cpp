@@ -9,17 +9,17 @@
 namespace navaid::mapping {
 
 namespace {
-const ConfigKey<double> kResolution{"mapping.grid.resolution_m", GridConfig{}.resolution_m, {0.01, 1.0},
+const ConfigKey<double> kGridGeometryResolution{"mapping.grid.resolution_m", GridConfig{}.resolution_m, {0.01, 1.0},
                                     "cell edge of the 2D layers [m]"};
 const ConfigKey<double> kSize{"mapping.grid.size_m", GridConfig{}.size_m, {1.0, 100.0},
                               "edge of the 2D window around the user [m] (at least 3 cells)"};
 }  // namespace
 
-ConfigSchema grid_config_schema() { return ConfigSchema().add(kResolution).add(kSize); }
+ConfigSchema grid_config_schema() { return ConfigSchema().add(kGridGeometryResolution).add(kSize); }
 
 GridConfig read_grid_config(const Config& config) {
   GridConfig g;
-  g.resolution_m = get(config, kResolution);
+  g.resolution_m = get(config, kGridGeometryResolution);
   g.size_m = get(config, kSize);
   if (std::lround(g.size_m / g.resolution_m) < 3) {
     const std::string key = config.has("mapping.grid.size_m") ? "mapping.grid.size_m" : "mapping.grid.resolution_m";

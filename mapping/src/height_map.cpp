@@ -8,17 +8,17 @@
 namespace navaid::mapping {
 
 namespace {
-const ConfigKey<double> kOccupiedThreshold{"mapping.height.occupied_threshold", HeightMapConfig{}.occupied_threshold,
+const ConfigKey<double> kHeightMapOccupiedThreshold{"mapping.height.occupied_threshold", HeightMapConfig{}.occupied_threshold,
                                            {0.01, 1.0}, "a voxel is occupied at or above this probability"};
 const ConfigKey<double> kMaxAboveCamera{"mapping.height.max_above_camera_m", HeightMapConfig{}.max_above_camera_m,
                                         {-2.0, 5.0}, "voxels higher than the camera plus this are left out [m]"};
 }  // namespace
 
-ConfigSchema height_map_config_schema() { return ConfigSchema().add(kOccupiedThreshold).add(kMaxAboveCamera); }
+ConfigSchema height_map_config_schema() { return ConfigSchema().add(kHeightMapOccupiedThreshold).add(kMaxAboveCamera); }
 
 HeightMapConfig read_height_map_config(const Config& config) {
   HeightMapConfig h;
-  h.occupied_threshold = get(config, kOccupiedThreshold);
+  h.occupied_threshold = get(config, kHeightMapOccupiedThreshold);
   h.max_above_camera_m = get(config, kMaxAboveCamera);
   return h;
 }

@@ -66,50 +66,50 @@ void validate(const ObstaclePipelineConfig& c) {
 
 namespace {
 // Angles are in degrees in the file, radians in the struct.
-const ObstaclePipelineConfig kDefaults;
-const ConfigKey<double> kVoxelLeaf{kPrefix + "voxel_leaf_size", kDefaults.voxel_leaf_size_m, kLeaf,
+const ObstaclePipelineConfig kObstaclePipelineConfigDefaults;
+const ConfigKey<double> kVoxelLeaf{kPrefix + "voxel_leaf_size", kObstaclePipelineConfigDefaults.voxel_leaf_size_m, kLeaf,
                                    "edge of the approximate voxel grid cubes [m]"};
-const ConfigKey<int> kRansacIterations{kPrefix + "ransac.max_iterations", kDefaults.ransac_max_iterations,
+const ConfigKey<int> kRansacIterations{kPrefix + "ransac.max_iterations", kObstaclePipelineConfigDefaults.ransac_max_iterations,
                                        static_cast<int>(kIterations.min), static_cast<int>(kIterations.max),
                                        "RANSAC iterations at most"};
-const ConfigKey<double> kRansacDistance{kPrefix + "ransac.distance_threshold", kDefaults.ransac_distance_threshold_m,
+const ConfigKey<double> kRansacDistance{kPrefix + "ransac.distance_threshold", kObstaclePipelineConfigDefaults.ransac_distance_threshold_m,
                                         kDistance, "ground-plane inlier distance, also the step boundary [m]"};
-const ConfigKey<double> kRansacEpsAngle{kPrefix + "ransac.eps_angle", kDefaults.ransac_eps_angle_rad / kDeg,
+const ConfigKey<double> kRansacEpsAngle{kPrefix + "ransac.eps_angle", kObstaclePipelineConfigDefaults.ransac_eps_angle_rad / kDeg,
                                         kEpsAngleDeg, "largest angle between the plane normal and up [deg]"};
-const ConfigKey<int> kRansacMinInliers{kPrefix + "ransac.min_inliers", kDefaults.ransac_min_inliers,
+const ConfigKey<int> kRansacMinInliers{kPrefix + "ransac.min_inliers", kObstaclePipelineConfigDefaults.ransac_min_inliers,
                                        static_cast<int>(kMinInliers.min), static_cast<int>(kMinInliers.max),
                                        "fewest inliers for a RANSAC plane to count as found"};
-const ConfigKey<int> kRansacMaxPoints{kPrefix + "ransac.max_points", kDefaults.ransac_max_points,
+const ConfigKey<int> kRansacMaxPoints{kPrefix + "ransac.max_points", kObstaclePipelineConfigDefaults.ransac_max_points,
                                       static_cast<int>(kMaxPoints.min), static_cast<int>(kMaxPoints.max),
                                       "RANSAC fits on at most this many points, spread over the cloud"};
-const ConfigKey<bool> kRansacOptimize{kPrefix + "ransac.optimize_coefficients", kDefaults.ransac_optimize_coefficients,
+const ConfigKey<bool> kRansacOptimize{kPrefix + "ransac.optimize_coefficients", kObstaclePipelineConfigDefaults.ransac_optimize_coefficients,
                                       "least-squares refit of the RANSAC plane on its inliers"};
 const ConfigKey<double> kAverageDeviation{kPrefix + "running_average.max_deviation",
-                                          kDefaults.running_average_max_deviation_m, kDeviation,
+                                          kObstaclePipelineConfigDefaults.running_average_max_deviation_m, kDeviation,
                                           "a plane whose offset differs this much from the average is false [m]"};
-const ConfigKey<int> kAverageFrames{kPrefix + "running_average.frames", kDefaults.running_average_frames,
+const ConfigKey<int> kAverageFrames{kPrefix + "running_average.frames", kObstaclePipelineConfigDefaults.running_average_frames,
                                     static_cast<int>(kFrames.min), static_cast<int>(kFrames.max),
                                     "length of the ground plane's running average [frames]"};
 const ConfigKey<double> kFallbackDistance{kPrefix + "running_average.distance_threshold",
-                                          kDefaults.fallback_distance_threshold_m, kDistance,
+                                          kObstaclePipelineConfigDefaults.fallback_distance_threshold_m, kDistance,
                                           "inlier distance to the running-average plane [m]"};
-const ConfigKey<bool> kLevelRefinement{kPrefix + "level_refinement", kDefaults.level_refinement,
+const ConfigKey<bool> kLevelRefinement{kPrefix + "level_refinement", kObstaclePipelineConfigDefaults.level_refinement,
                                        "of two ground levels a step apart, take the one under the user's feet"};
-const ConfigKey<double> kMaxStep{kPrefix + "max_step_height", kDefaults.max_step_height_m, kStep,
+const ConfigKey<double> kMaxStep{kPrefix + "max_step_height", kObstaclePipelineConfigDefaults.max_step_height_m, kStep,
                                  "highest step between two levels of ground [m]"};
-const ConfigKey<double> kLevelFit{kPrefix + "level_fit_threshold", kDefaults.level_fit_threshold_m, kDistance,
+const ConfigKey<double> kLevelFit{kPrefix + "level_fit_threshold", kObstaclePipelineConfigDefaults.level_fit_threshold_m, kDistance,
                                   "inlier distance of the level refit [m]"};
-const ConfigKey<double> kLevelEpsAngle{kPrefix + "level_eps_angle", kDefaults.level_eps_angle_rad / kDeg, kEpsAngleDeg,
+const ConfigKey<double> kLevelEpsAngle{kPrefix + "level_eps_angle", kObstaclePipelineConfigDefaults.level_eps_angle_rad / kDeg, kEpsAngleDeg,
                                        "angle tolerance of the level refit [deg]"};
-const ConfigKey<double> kAboveHeadHeight{kPrefix + "above_head_height", kDefaults.above_head_height_m, kAboveHead,
+const ConfigKey<double> kAboveHeadHeight{kPrefix + "above_head_height", kObstaclePipelineConfigDefaults.above_head_height_m, kAboveHead,
                                    "points higher than this above the ground are ignored [m]"};
-const ConfigKey<bool> kAlignToGround{kPrefix + "align_to_ground", kDefaults.align_to_ground_plane,
+const ConfigKey<bool> kAlignToGround{kPrefix + "align_to_ground", kObstaclePipelineConfigDefaults.align_to_ground_plane,
                                      "rotate the ground normal onto the user's up axis (false: the T_U_C prior as given)"};
-const ConfigKey<double> kScanMinBearing{kPrefix + "scan.min_bearing", kDefaults.scan_min_bearing_rad / kDeg,
+const ConfigKey<double> kScanMinBearing{kPrefix + "scan.min_bearing", kObstaclePipelineConfigDefaults.scan_min_bearing_rad / kDeg,
                                         kBearingDeg, "first bearing of the obstacle scan [deg]"};
-const ConfigKey<double> kScanMaxBearing{kPrefix + "scan.max_bearing", kDefaults.scan_max_bearing_rad / kDeg,
+const ConfigKey<double> kScanMaxBearing{kPrefix + "scan.max_bearing", kObstaclePipelineConfigDefaults.scan_max_bearing_rad / kDeg,
                                         kBearingDeg, "last bearing of the obstacle scan [deg] (>= min_bearing)"};
-const ConfigKey<double> kScanBinWidth{kPrefix + "scan.bin_width", kDefaults.scan_bin_width_rad / kDeg, kBinWidthDeg,
+const ConfigKey<double> kScanBinWidth{kPrefix + "scan.bin_width", kObstaclePipelineConfigDefaults.scan_bin_width_rad / kDeg, kBinWidthDeg,
                                       "bearing bin width of the obstacle scan [deg]"};
 }  // namespace
 

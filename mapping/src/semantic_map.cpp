@@ -18,38 +18,38 @@
 namespace navaid::mapping {
 
 namespace {
-const SemanticMapConfig kDefaults;
-const ConfigKey<double> kResolution{"mapping.map.resolution_m", kDefaults.resolution_m, {0.01, 1.0},
+const SemanticMapConfig kSemanticMapDefaults;
+const ConfigKey<double> kSemanticMapResolution{"mapping.map.resolution_m", kSemanticMapDefaults.resolution_m, {0.01, 1.0},
                                     "voxel edge of the semantic map [m]"};
 const ConfigKey<std::string> kFusion{"mapping.map.fusion", std::string("max"), {"max", "bayes"},
                                      "semantic fusion: max (eLabrador) or a Bayesian class histogram"};
-const ConfigKey<double> kMaxFusionDiscount{"mapping.map.max_fusion_discount", kDefaults.max_fusion_discount, {0.01, 1.0},
+const ConfigKey<double> kMaxFusionDiscount{"mapping.map.max_fusion_discount", kSemanticMapDefaults.max_fusion_discount, {0.01, 1.0},
                                            "max fusion: a disagreeing label discounts the stored confidence by this"};
-const ConfigKey<double> kProbHit{"mapping.map.prob_hit", kDefaults.prob_hit, {0.5001, 0.9999},
+const ConfigKey<double> kProbHit{"mapping.map.prob_hit", kSemanticMapDefaults.prob_hit, {0.5001, 0.9999},
                                  "OctoMap sensor model: probability of a hit"};
-const ConfigKey<double> kProbMiss{"mapping.map.prob_miss", kDefaults.prob_miss, {0.0001, 0.4999},
+const ConfigKey<double> kProbMiss{"mapping.map.prob_miss", kSemanticMapDefaults.prob_miss, {0.0001, 0.4999},
                                   "OctoMap sensor model: probability of a miss"};
-const ConfigKey<double> kClampMin{"mapping.map.clamp_min", kDefaults.clamp_min, {0.0001, 0.4999},
+const ConfigKey<double> kClampMin{"mapping.map.clamp_min", kSemanticMapDefaults.clamp_min, {0.0001, 0.4999},
                                   "OctoMap clamping: lowest occupancy probability"};
-const ConfigKey<double> kClampMax{"mapping.map.clamp_max", kDefaults.clamp_max, {0.5001, 0.9999},
+const ConfigKey<double> kClampMax{"mapping.map.clamp_max", kSemanticMapDefaults.clamp_max, {0.5001, 0.9999},
                                   "OctoMap clamping: highest occupancy probability"};
-const ConfigKey<double> kOccupancyThreshold{"mapping.map.occupancy_threshold", kDefaults.occupancy_threshold, {0.01, 0.99},
+const ConfigKey<double> kOccupancyThreshold{"mapping.map.occupancy_threshold", kSemanticMapDefaults.occupancy_threshold, {0.01, 0.99},
                                             "a voxel is occupied above this probability"};
-const ConfigKey<double> kWindowSize{"mapping.map.window_size_m", kDefaults.window_size_m, {1.0, 200.0},
+const ConfigKey<double> kWindowSize{"mapping.map.window_size_m", kSemanticMapDefaults.window_size_m, {1.0, 200.0},
                                     "edge of the square map window centred on the user [m]"};
-const ConfigKey<double> kWindowBelow{"mapping.map.window_below_m", kDefaults.window_below_m, {0.0, 50.0},
+const ConfigKey<double> kWindowBelow{"mapping.map.window_below_m", kSemanticMapDefaults.window_below_m, {0.0, 50.0},
                                      "the window reaches this far below the user [m]"};
-const ConfigKey<double> kWindowAbove{"mapping.map.window_above_m", kDefaults.window_above_m, {0.0, 50.0},
+const ConfigKey<double> kWindowAbove{"mapping.map.window_above_m", kSemanticMapDefaults.window_above_m, {0.0, 50.0},
                                      "the window reaches this far above the user [m]"};
-const ConfigKey<double> kPruneStep{"mapping.map.prune_step_m", kDefaults.prune_step_m, {0.0, 100.0},
+const ConfigKey<double> kPruneStep{"mapping.map.prune_step_m", kSemanticMapDefaults.prune_step_m, {0.0, 100.0},
                                    "re-prune the window once its centre moved this far [m]"};
-const ConfigKey<int> kMaintenanceInterval{"mapping.map.maintenance_interval", kDefaults.maintenance_interval, 1, 1000,
+const ConfigKey<int> kMaintenanceInterval{"mapping.map.maintenance_interval", kSemanticMapDefaults.maintenance_interval, 1, 1000,
                                           "frames between refreshes of inner nodes (OctoMap prune())"};
 }  // namespace
 
 ConfigSchema semantic_map_config_schema() {
   return ConfigSchema()
-      .add(kResolution)
+      .add(kSemanticMapResolution)
       .add(kFusion)
       .add(kMaxFusionDiscount)
       .add(kProbHit)
@@ -66,7 +66,7 @@ ConfigSchema semantic_map_config_schema() {
 
 SemanticMapConfig read_semantic_map_config(const Config& c) {
   SemanticMapConfig m;
-  m.resolution_m = get(c, kResolution);
+  m.resolution_m = get(c, kSemanticMapResolution);
   m.fusion = get(c, kFusion) == "max" ? FusionPolicy::kMax : FusionPolicy::kBayes;
   m.max_fusion_discount = get(c, kMaxFusionDiscount);
   m.prob_hit = get(c, kProbHit);
@@ -82,7 +82,9 @@ SemanticMapConfig read_semantic_map_config(const Config& c) {
   return m;
 }
 
-namespace {
+// Named, not anonymous: SemanticMap::Impl holds a TreeOps (GCC warns of a member whose type has
+// internal linkage once this file is compiled inside a unity batch).
+namespace semantic_map_ops {
 
 /// The operations of the map on one tree type; one implementation per fusion policy.
 class TreeOps {
@@ -269,7 +271,11 @@ std::unique_ptr<TreeOps> make_ops(std::unique_ptr<SemanticOcTree<Fusion>> tree, 
   return std::make_unique<TreeOpsT<Fusion>>(std::move(tree));
 }
 
-}  // namespace
+}  // namespace semantic_map_ops
+
+using semantic_map_ops::make_ops;
+using semantic_map_ops::make_tree;
+using semantic_map_ops::TreeOps;
 
 struct SemanticMap::Impl {
   SemanticMapConfig config;

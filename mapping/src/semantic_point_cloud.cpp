@@ -13,17 +13,17 @@
 namespace navaid::mapping {
 
 namespace {
-const SemanticPointCloudConfig kDefaults;
-const ConfigKey<int> kPixelStride{"mapping.cloud.pixel_stride", kDefaults.pixel_stride, 1, 64,
+const SemanticPointCloudConfig kSemanticPointCloudDefaults;
+const ConfigKey<int> kPixelStride{"mapping.cloud.pixel_stride", kSemanticPointCloudDefaults.pixel_stride, 1, 64,
                                   "map every n-th pixel in u and v"};
-const ConfigKey<double> kDepthMin{"mapping.cloud.depth_min_m", kDefaults.depth_min_m, {0.0, 100.0},
+const ConfigKey<double> kDepthMin{"mapping.cloud.depth_min_m", kSemanticPointCloudDefaults.depth_min_m, {0.0, 100.0},
                                   "nearer depths are sensor artefacts [m]"};
-const ConfigKey<double> kDepthMax{"mapping.cloud.depth_max_m", kDefaults.depth_max_m, {0.01, 100.0},
+const ConfigKey<double> kDepthMax{"mapping.cloud.depth_max_m", kSemanticPointCloudDefaults.depth_max_m, {0.01, 100.0},
                                   "farther depths are too noisy to map [m] (> depth_min_m)"};
 const ConfigKey<std::vector<std::string>> kIgnoredClasses{"mapping.cloud.ignored_classes", {"sky"},
                                                           "semantic classes whose points are dropped, e.g. [sky, person]"};
 const ConfigKey<double> kDefaultLabelProbability{"mapping.cloud.default_label_probability",
-                                                 kDefaults.default_label_probability, {0.0, 1.0},
+                                                 kSemanticPointCloudDefaults.default_label_probability, {0.0, 1.0},
                                                  "class probability of a labelled pixel without a confidence image"};
 }  // namespace
 

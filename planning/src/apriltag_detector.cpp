@@ -38,15 +38,15 @@ Eigen::Vector2d diagonal_intersection(const std::array<Eigen::Vector2d, 4>& c) {
 }  // namespace
 
 namespace {
-const AprilTagDetectorConfig kDefaults;
-const ConfigKey<std::string> kFamily{"planning.apriltag.family", kDefaults.family, {"36h11", "25h9", "16h5"},
+const AprilTagDetectorConfig kApriltagDetectorDefaults;
+const ConfigKey<std::string> kFamily{"planning.apriltag.family", kApriltagDetectorDefaults.family, {"36h11", "25h9", "16h5"},
                                      "AprilTag family"};
-const ConfigKey<double> kQuadDecimate{"planning.apriltag.quad_decimate", kDefaults.quad_decimate, {1.0, 8.0},
+const ConfigKey<double> kQuadDecimate{"planning.apriltag.quad_decimate", kApriltagDetectorDefaults.quad_decimate, {1.0, 8.0},
                                       "> 1 detects quads on a decimated image: faster, shorter range"};
-const ConfigKey<double> kQuadSigma{"planning.apriltag.quad_sigma", kDefaults.quad_sigma, {0.0, 5.0},
+const ConfigKey<double> kQuadSigma{"planning.apriltag.quad_sigma", kApriltagDetectorDefaults.quad_sigma, {0.0, 5.0},
                                    "Gaussian blur before quad detection [px]"};
-const ConfigKey<int> kThreads{"planning.apriltag.threads", kDefaults.threads, 1, 64, "AprilTag detector threads"};
-const ConfigKey<double> kTagSize{"planning.apriltag.tag_size_m", kDefaults.tag_size_m, {0.0, 10.0},
+const ConfigKey<int> kThreads{"planning.apriltag.threads", kApriltagDetectorDefaults.threads, 1, 64, "AprilTag detector threads"};
+const ConfigKey<double> kTagSize{"planning.apriltag.tag_size_m", kApriltagDetectorDefaults.tag_size_m, {0.0, 10.0},
                                  "black-square side of the tags [m]; > 0 estimates the tag's pose"};
 }  // namespace
 

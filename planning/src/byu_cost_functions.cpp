@@ -68,31 +68,31 @@ std::optional<ByuCostFunction> byu_cost_function_from_string(std::string_view na
 }
 
 namespace {
-const ByuCostConfig kDefaults;
-const ConfigKey<double> kFicfWidth{"planning.byu.ficf.width_m", kDefaults.ficf.width_m, {0.01, 10.0},
+const ByuCostConfig kByuCostFunctionsDefaults;
+const ConfigKey<double> kFicfWidth{"planning.byu.ficf.width_m", kByuCostFunctionsDefaults.ficf.width_m, {0.01, 10.0},
                                    "FICF: width w of the intended user path [m]"};
-const ConfigKey<double> kFicfDistance{"planning.byu.ficf.distance_m", kDefaults.ficf.distance_m, {0.05, 20.0},
+const ConfigKey<double> kFicfDistance{"planning.byu.ficf.distance_m", kByuCostFunctionsDefaults.ficf.distance_m, {0.05, 20.0},
                                       "FICF: distance d of the intended path (side costs only below it) [m]"};
-const ConfigKey<double> kFicfForward{"planning.byu.ficf.forward_threshold", kDefaults.ficf.thresholds.forward,
+const ConfigKey<double> kFicfForward{"planning.byu.ficf.forward_threshold", kByuCostFunctionsDefaults.ficf.thresholds.forward,
                                      {0.0, 1e6}, "FICF: forward cost threshold of a rumble"};
-const ConfigKey<double> kFicfLeftRight{"planning.byu.ficf.left_right_threshold", kDefaults.ficf.thresholds.left_right,
+const ConfigKey<double> kFicfLeftRight{"planning.byu.ficf.left_right_threshold", kByuCostFunctionsDefaults.ficf.thresholds.left_right,
                                        {0.0, 1e6}, "FICF: left / right cost threshold of a rumble"};
-const ConfigKey<double> kCacfWidth{"planning.byu.cacf.width_m", kDefaults.cacf.width_m, {0.01, 10.0},
+const ConfigKey<double> kCacfWidth{"planning.byu.cacf.width_m", kByuCostFunctionsDefaults.cacf.width_m, {0.01, 10.0},
                                    "CACF: width w of the intended path (lower safety cushion) [m]"};
-const ConfigKey<double> kCacfDistance{"planning.byu.cacf.distance_m", kDefaults.cacf.distance_m, {0.05, 20.0},
+const ConfigKey<double> kCacfDistance{"planning.byu.cacf.distance_m", kByuCostFunctionsDefaults.cacf.distance_m, {0.05, 20.0},
                                       "CACF: distance d of the intended path [m]"};
-const ConfigKey<double> kCacfCushionWidth{"planning.byu.cacf.cushion_width_m", kDefaults.cacf.cushion_width_m,
+const ConfigKey<double> kCacfCushionWidth{"planning.byu.cacf.cushion_width_m", kByuCostFunctionsDefaults.cacf.cushion_width_m,
                                           {0.01, 20.0}, "CACF: width of the upper safety cushion [m] (>= width_m)"};
-const ConfigKey<double> kCacfCushionDistance{"planning.byu.cacf.cushion_distance_m", kDefaults.cacf.cushion_distance_m,
+const ConfigKey<double> kCacfCushionDistance{"planning.byu.cacf.cushion_distance_m", kByuCostFunctionsDefaults.cacf.cushion_distance_m,
                                              {0.05, 20.0}, "CACF: distance of the upper safety cushion [m] (>= "
                                                            "distance_m)"};
-const ConfigKey<double> kCacfForward{"planning.byu.cacf.forward_threshold", kDefaults.cacf.thresholds.forward,
+const ConfigKey<double> kCacfForward{"planning.byu.cacf.forward_threshold", kByuCostFunctionsDefaults.cacf.thresholds.forward,
                                      {0.0, 1e6}, "CACF: forward cost threshold of a rumble"};
-const ConfigKey<double> kCacfLeftRight{"planning.byu.cacf.left_right_threshold", kDefaults.cacf.thresholds.left_right,
+const ConfigKey<double> kCacfLeftRight{"planning.byu.cacf.left_right_threshold", kByuCostFunctionsDefaults.cacf.thresholds.left_right,
                                        {0.0, 1e6}, "CACF: left / right cost threshold of a rumble"};
-const ConfigKey<double> kMaxBearing{"planning.byu.max_bearing_deg", rad_to_deg(kDefaults.max_bearing_rad), {1.0, 89.0},
+const ConfigKey<double> kMaxBearing{"planning.byu.max_bearing_deg", rad_to_deg(kByuCostFunctionsDefaults.max_bearing_rad), {1.0, 89.0},
                                     "scan bins beyond this bearing are ignored; e of eq. 2.13 [deg]"};
-const ConfigKey<bool> kDropOffs{"planning.byu.drop_offs_are_obstacles", kDefaults.drop_offs_are_obstacles,
+const ConfigKey<bool> kDropOffs{"planning.byu.drop_offs_are_obstacles", kByuCostFunctionsDefaults.drop_offs_are_obstacles,
                                 "drop-offs (kerbs stepped down) count as obstacles"};
 }  // namespace
 

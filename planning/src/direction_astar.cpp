@@ -12,17 +12,17 @@
 namespace navaid::planning {
 
 namespace {
-const DirectionAStarConfig kDefaults;
-const ConfigKey<int> kNumTargets{"planning.direction_astar.num_targets", kDefaults.num_targets, 1, 1000,
+const DirectionAStarConfig kDirectionAstarDefaults;
+const ConfigKey<int> kNumTargets{"planning.direction_astar.num_targets", kDirectionAstarDefaults.num_targets, 1, 1000,
                                  "n_s: boundary targets of Direction A* (one per 10 deg by default)"};
-const ConfigKey<double> kBeta{"planning.direction_astar.beta", kDefaults.beta, {0.0, 1e4},
+const ConfigKey<double> kBeta{"planning.direction_astar.beta", kDirectionAstarDefaults.beta, {0.0, 1e4},
                               "weight of Direction A*'s direction term [cost units]"};
-const ConfigKey<double> kWindow{"planning.direction_astar.window_m", kDefaults.window_m, {1.0, 1000.0},
+const ConfigKey<double> kDirectionAstarWindow{"planning.direction_astar.window_m", kDirectionAstarDefaults.window_m, {1.0, 1000.0},
                                 "edge of Direction A*'s local window [m]"};
 }  // namespace
 
 ConfigSchema direction_astar_config_schema() {
-  return grid_astar_config_schema().add(kNumTargets).add(kBeta).add(kWindow);
+  return grid_astar_config_schema().add(kNumTargets).add(kBeta).add(kDirectionAstarWindow);
 }
 
 DirectionAStarConfig read_direction_astar_config(const Config& config) {
@@ -30,7 +30,7 @@ DirectionAStarConfig read_direction_astar_config(const Config& config) {
   c.grid = read_grid_astar_config(config);
   c.num_targets = get(config, kNumTargets);
   c.beta = get(config, kBeta);
-  c.window_m = get(config, kWindow);
+  c.window_m = get(config, kDirectionAstarWindow);
   return c;
 }
 

@@ -14,7 +14,7 @@ namespace navaid::planning {
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kFootRouterDeg = 3.14159265358979323846 / 180.0;
 constexpr double kRadius = 6371008.8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -127,41 +127,41 @@ bool valid_lat_lon(const GeoPoint& p) {
 }
 
 namespace {
-const FootRouteConfig kDefaults;
-const ConfigKey<double> kSidewalkFactor{"planning.route.sidewalk_factor", kDefaults.sidewalk_factor, {1.0, 100.0},
+const FootRouteConfig kFootRouterDefaults;
+const ConfigKey<double> kSidewalkFactor{"planning.route.sidewalk_factor", kFootRouterDefaults.sidewalk_factor, {1.0, 100.0},
     "cost factor of a sidewalk"};
-const ConfigKey<double> kFootwayFactor{"planning.route.footway_factor", kDefaults.footway_factor, {1.0, 100.0},
+const ConfigKey<double> kFootwayFactor{"planning.route.footway_factor", kFootRouterDefaults.footway_factor, {1.0, 100.0},
     "cost factor of a footway, path or pedestrian way"};
-const ConfigKey<double> kCrossingWayFactor{"planning.route.crossing_way_factor", kDefaults.crossing_way_factor, {1.0, 100.0},
+const ConfigKey<double> kCrossingWayFactor{"planning.route.crossing_way_factor", kFootRouterDefaults.crossing_way_factor, {1.0, 100.0},
     "cost factor of the length of a footway=crossing"};
-const ConfigKey<double> kRoadSidewalkFactor{"planning.route.road_sidewalk_factor", kDefaults.road_sidewalk_factor, {1.0, 100.0},
+const ConfigKey<double> kRoadSidewalkFactor{"planning.route.road_sidewalk_factor", kFootRouterDefaults.road_sidewalk_factor, {1.0, 100.0},
     "cost factor of a road with a sidewalk=* tag"};
-const ConfigKey<double> kRoadFactor{"planning.route.road_factor", kDefaults.road_factor, {1.0, 100.0},
+const ConfigKey<double> kRoadFactor{"planning.route.road_factor", kFootRouterDefaults.road_factor, {1.0, 100.0},
     "cost factor of a road without a sidewalk"};
-const ConfigKey<double> kStepsFactor{"planning.route.steps_factor", kDefaults.steps_factor, {1.0, 100.0},
+const ConfigKey<double> kStepsFactor{"planning.route.steps_factor", kFootRouterDefaults.steps_factor, {1.0, 100.0},
     "cost factor of steps"};
-const ConfigKey<double> kAvoidStepsFactor{"planning.route.avoid_steps_factor", kDefaults.avoid_steps_factor, {1.0, 1e4},
+const ConfigKey<double> kAvoidStepsFactor{"planning.route.avoid_steps_factor", kFootRouterDefaults.avoid_steps_factor, {1.0, 1e4},
     "avoid_steps: steps cost this factor more"};
-const ConfigKey<double> kCrossingSignalsM{"planning.route.crossing_signals_m", kDefaults.crossing_signals_m, {0.0, 1e4},
+const ConfigKey<double> kCrossingSignalsM{"planning.route.crossing_signals_m", kFootRouterDefaults.crossing_signals_m, {0.0, 1e4},
     "penalty of a signalled crossing [m]"};
-const ConfigKey<double> kCrossingMarkedM{"planning.route.crossing_marked_m", kDefaults.crossing_marked_m, {0.0, 1e4},
+const ConfigKey<double> kCrossingMarkedM{"planning.route.crossing_marked_m", kFootRouterDefaults.crossing_marked_m, {0.0, 1e4},
     "penalty of a marked (zebra) crossing [m]"};
-const ConfigKey<double> kCrossingUncontrolledM{"planning.route.crossing_uncontrolled_m", kDefaults.crossing_uncontrolled_m, {0.0, 1e4},
+const ConfigKey<double> kCrossingUncontrolledM{"planning.route.crossing_uncontrolled_m", kFootRouterDefaults.crossing_uncontrolled_m, {0.0, 1e4},
     "penalty of an uncontrolled crossing [m]"};
-const ConfigKey<double> kCrossingUnmarkedM{"planning.route.crossing_unmarked_m", kDefaults.crossing_unmarked_m, {0.0, 1e4},
+const ConfigKey<double> kCrossingUnmarkedM{"planning.route.crossing_unmarked_m", kFootRouterDefaults.crossing_unmarked_m, {0.0, 1e4},
     "penalty of an unmarked crossing [m]"};
-const ConfigKey<double> kCrossingUnknownM{"planning.route.crossing_unknown_m", kDefaults.crossing_unknown_m, {0.0, 1e4},
+const ConfigKey<double> kCrossingUnknownM{"planning.route.crossing_unknown_m", kFootRouterDefaults.crossing_unknown_m, {0.0, 1e4},
     "penalty of a crossing of unknown control [m]"};
-const ConfigKey<double> kTactileFactor{"planning.route.tactile_factor", kDefaults.tactile_factor, {0.0, 1.0},
+const ConfigKey<double> kTactileFactor{"planning.route.tactile_factor", kFootRouterDefaults.tactile_factor, {0.0, 1.0},
     "tactile paving multiplies a crossing's penalty by this"};
-const ConfigKey<double> kMaxSnapM{"planning.route.max_snap_m", kDefaults.max_snap_m, {0.1, 1e4},
+const ConfigKey<double> kMaxSnapM{"planning.route.max_snap_m", kFootRouterDefaults.max_snap_m, {0.1, 1e4},
     "a point farther than this from every edge is off the graph [m]"};
-const ConfigKey<double> kMaxTimeS{"planning.route.max_time_s", kDefaults.max_time_s, {0.0, 3600.0},
+const ConfigKey<double> kMaxTimeS{"planning.route.max_time_s", kFootRouterDefaults.max_time_s, {0.0, 3600.0},
     "wall-clock limit of a route search [s]; 0 = none"};
-const ConfigKey<bool> kAvoidSteps{"planning.route.avoid_steps", kDefaults.avoid_steps,
+const ConfigKey<bool> kAvoidSteps{"planning.route.avoid_steps", kFootRouterDefaults.avoid_steps,
     "steps cost avoid_steps_factor times more"};
-const ConfigKey<long long> kMaxExpansions{"planning.route.max_expansions",
-                                          static_cast<long long>(kDefaults.max_expansions), 1, 1'000'000'000,
+const ConfigKey<long long> kFootRouterMaxExpansions{"planning.route.max_expansions",
+                                          static_cast<long long>(kFootRouterDefaults.max_expansions), 1, 1'000'000'000,
                                           "a route search stops after this many expansions"};
 }  // namespace
 
@@ -182,7 +182,7 @@ ConfigSchema foot_route_config_schema() {
   s.add(kCrossingUnknownM);
   s.add(kTactileFactor);
   s.add(kMaxSnapM);
-  s.add(kMaxExpansions);
+  s.add(kFootRouterMaxExpansions);
   s.add(kMaxTimeS);
   return s;
 }
@@ -204,7 +204,7 @@ FootRouteConfig foot_route_config(const Config& config) {
   c.crossing_unknown_m = get(config, kCrossingUnknownM);
   c.tactile_factor = get(config, kTactileFactor);
   c.max_snap_m = get(config, kMaxSnapM);
-  c.max_expansions = static_cast<std::size_t>(get(config, kMaxExpansions));
+  c.max_expansions = static_cast<std::size_t>(get(config, kFootRouterMaxExpansions));
   c.max_time_s = get(config, kMaxTimeS);
   return c;
 }
@@ -253,8 +253,8 @@ FootRouter::FootRouter(const FootGraph& graph, FootRouteConfig config) : graph_(
 std::optional<EdgeSnap> FootRouter::snap(const GeoPoint& p, std::optional<std::uint32_t> component) const {
   if (graph_.edges.empty()) return std::nullopt;
   bool any = false;
-  const double mx = std::cos(p.lat_deg * kDeg) * kRadius * kDeg;  // metres per degree of longitude
-  const double my = kRadius * kDeg;
+  const double mx = std::cos(p.lat_deg * kFootRouterDeg) * kRadius * kFootRouterDeg;  // metres per degree of longitude
+  const double my = kRadius * kFootRouterDeg;
   EdgeSnap best;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::uint32_t i = 0; i < graph_.edges.size(); ++i) {

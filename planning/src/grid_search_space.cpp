@@ -10,19 +10,19 @@
 namespace navaid::planning {
 
 namespace {
-const GridCostConfig kDefaults;
-const ConfigKey<double> kLengthWeight{"planning.grid.length_weight", kDefaults.length_weight, {1e-6, 100.0},
+const GridCostConfig kGridSearchSpaceDefaults;
+const ConfigKey<double> kLengthWeight{"planning.grid.length_weight", kGridSearchSpaceDefaults.length_weight, {1e-6, 100.0},
                                       "alpha: grid search cost per metre walked"};
-const ConfigKey<double> kCostWeight{"planning.grid.cost_weight", kDefaults.cost_weight, {0.0, 100.0},
+const ConfigKey<double> kCostWeight{"planning.grid.cost_weight", kGridSearchSpaceDefaults.cost_weight, {0.0, 100.0},
                                     "w_c: weight of the map cost integral in the grid search"};
-const ConfigKey<double> kBaseClearance{"planning.grid.base_clearance_m", kDefaults.base_clearance_m, {0.0, 2.0},
+const ConfigKey<double> kBaseClearance{"planning.grid.base_clearance_m", kGridSearchSpaceDefaults.base_clearance_m, {0.0, 2.0},
                                        "cells nearer than this (plus k sigma) to an obstacle are blocked [m]"};
-const ConfigKey<double> kClearanceKSigma{"planning.grid.clearance_k_sigma", kDefaults.clearance_k_sigma, {0.0, 10.0},
+const ConfigKey<double> kGridSearchSpaceClearanceKSigma{"planning.grid.clearance_k_sigma", kGridSearchSpaceDefaults.clearance_k_sigma, {0.0, 10.0},
                                          "the grid clearance grows by this times the horizontal position sigma"};
 }  // namespace
 
 ConfigSchema grid_cost_config_schema() {
-  return ConfigSchema().add(kLengthWeight).add(kCostWeight).add(kBaseClearance).add(kClearanceKSigma);
+  return ConfigSchema().add(kLengthWeight).add(kCostWeight).add(kBaseClearance).add(kGridSearchSpaceClearanceKSigma);
 }
 
 GridCostConfig read_grid_cost_config(const Config& config) {
@@ -30,7 +30,7 @@ GridCostConfig read_grid_cost_config(const Config& config) {
   c.length_weight = get(config, kLengthWeight);
   c.cost_weight = get(config, kCostWeight);
   c.base_clearance_m = get(config, kBaseClearance);
-  c.clearance_k_sigma = get(config, kClearanceKSigma);
+  c.clearance_k_sigma = get(config, kGridSearchSpaceClearanceKSigma);
   return c;
 }
 

@@ -79,24 +79,24 @@ DepthPatchStats depth_patch_stats(const ImageF32& depth, const Eigen::Vector2d& 
 }
 
 namespace {
-const HandGuidanceConfig kDefaults;
-const ConfigKey<int> kPatchHalf{"planning.hand.patch_half_px", kDefaults.patch_half_px, 0, 50,
+const HandGuidanceConfig kHandGuidanceDefaults;
+const ConfigKey<int> kPatchHalf{"planning.hand.patch_half_px", kHandGuidanceDefaults.patch_half_px, 0, 50,
                                 "half-size of the depth patch around a detection's centre [px]"};
-const ConfigKey<double> kMinValidFraction{"planning.hand.min_valid_fraction", kDefaults.min_valid_fraction, {1e-6, 1.0},
+const ConfigKey<double> kMinValidFraction{"planning.hand.min_valid_fraction", kHandGuidanceDefaults.min_valid_fraction, {1e-6, 1.0},
                                           "fewest valid depth pixels in the patch, as a fraction"};
-const ConfigKey<double> kPixelSigma{"planning.hand.pixel_sigma_px", kDefaults.pixel_sigma_px, {0.0, 20.0},
+const ConfigKey<double> kPixelSigma{"planning.hand.pixel_sigma_px", kHandGuidanceDefaults.pixel_sigma_px, {0.0, 20.0},
                                     "noise of a detection's centre [px]"};
-const ConfigKey<double> kMinDepthSigma{"planning.hand.min_depth_sigma_m", kDefaults.min_depth_sigma_m, {0.0, 1.0},
+const ConfigKey<double> kMinDepthSigma{"planning.hand.min_depth_sigma_m", kHandGuidanceDefaults.min_depth_sigma_m, {0.0, 1.0},
                                        "floor on the target's depth sigma [m]"};
-const ConfigKey<double> kMaxHeadingSigma{"planning.hand.max_heading_sigma_deg", rad_to_deg(kDefaults.max_heading_sigma_rad),
+const ConfigKey<double> kHandGuidanceMaxHeadingSigma{"planning.hand.max_heading_sigma_deg", rad_to_deg(kHandGuidanceDefaults.max_heading_sigma_rad),
                                          {0.1, 180.0}, "hand guidance waits while the heading sigma exceeds this [deg]"};
-const ConfigKey<double> kMaxPositionSigma{"planning.hand.max_position_sigma_m", kDefaults.max_position_sigma_m,
+const ConfigKey<double> kMaxPositionSigma{"planning.hand.max_position_sigma_m", kHandGuidanceDefaults.max_position_sigma_m,
                                           {0.001, 100.0}, "hand guidance waits while the position sigma exceeds this [m]"};
-const ConfigKey<double> kMaxTargetSigma{"planning.hand.max_target_sigma_m", kDefaults.max_target_sigma_m, {0.001, 100.0},
+const ConfigKey<double> kMaxTargetSigma{"planning.hand.max_target_sigma_m", kHandGuidanceDefaults.max_target_sigma_m, {0.001, 100.0},
                                         "hand guidance waits while the target's lateral sigma exceeds this [m]"};
-const ConfigKey<double> kConfidenceSigma{"planning.hand.confidence_sigma_m", kDefaults.confidence_sigma_m,
+const ConfigKey<double> kConfidenceSigma{"planning.hand.confidence_sigma_m", kHandGuidanceDefaults.confidence_sigma_m,
                                          {0.001, 100.0}, "hand guidance confidence falls to 0 at this lateral sigma [m]"};
-const ConfigKey<std::string> kScope{"planning.hand.scope", std::string("since-seen"), {"since-seen", "absolute"},
+const ConfigKey<std::string> kHandGuidanceScope{"planning.hand.scope", std::string("since-seen"), {"since-seen", "absolute"},
                                     "judge the uncertainty gained since the target was seen or the absolute one"};
 }  // namespace
 
@@ -106,11 +106,11 @@ ConfigSchema hand_guidance_config_schema() {
       .add(kMinValidFraction)
       .add(kPixelSigma)
       .add(kMinDepthSigma)
-      .add(kMaxHeadingSigma)
+      .add(kHandGuidanceMaxHeadingSigma)
       .add(kMaxPositionSigma)
       .add(kMaxTargetSigma)
       .add(kConfidenceSigma)
-      .add(kScope);
+      .add(kHandGuidanceScope);
 }
 
 HandGuidanceConfig read_hand_guidance_config(const Config& config) {
@@ -120,11 +120,11 @@ HandGuidanceConfig read_hand_guidance_config(const Config& config) {
   c.min_valid_fraction = get(config, kMinValidFraction);
   c.pixel_sigma_px = get(config, kPixelSigma);
   c.min_depth_sigma_m = get(config, kMinDepthSigma);
-  c.max_heading_sigma_rad = deg_to_rad(get(config, kMaxHeadingSigma));
+  c.max_heading_sigma_rad = deg_to_rad(get(config, kHandGuidanceMaxHeadingSigma));
   c.max_position_sigma_m = get(config, kMaxPositionSigma);
   c.max_target_sigma_m = get(config, kMaxTargetSigma);
   c.confidence_sigma_m = get(config, kConfidenceSigma);
-  c.scope = get(config, kScope) == "since-seen" ? HandGuidanceScope::kSinceSeen : HandGuidanceScope::kAbsolute;
+  c.scope = get(config, kHandGuidanceScope) == "since-seen" ? HandGuidanceScope::kSinceSeen : HandGuidanceScope::kAbsolute;
   return c;
 }
 

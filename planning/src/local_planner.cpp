@@ -11,18 +11,18 @@
 namespace navaid::planning {
 
 namespace {
-const ConfigKey<long long> kMaxExpansions{"planning.search.max_expansions",
+const ConfigKey<long long> kLocalPlannerMaxExpansions{"planning.search.max_expansions",
                                           static_cast<long long>(SearchLimits{}.max_expansions), 1, 1'000'000'000,
                                           "a search stops after taking this many nodes off its open list"};
 const ConfigKey<double> kMaxTime{"planning.search.max_time_s", SearchLimits{}.max_time_s, {0.0, 3600.0},
                                  "wall-clock limit of a search [s]; 0 = none (replay stays deterministic)"};
 }  // namespace
 
-ConfigSchema search_limits_schema() { return ConfigSchema().add(kMaxExpansions).add(kMaxTime); }
+ConfigSchema search_limits_schema() { return ConfigSchema().add(kLocalPlannerMaxExpansions).add(kMaxTime); }
 
 SearchLimits read_search_limits(const Config& config) {
   SearchLimits l;
-  l.max_expansions = static_cast<std::size_t>(get(config, kMaxExpansions));
+  l.max_expansions = static_cast<std::size_t>(get(config, kLocalPlannerMaxExpansions));
   l.max_time_s = get(config, kMaxTime);
   return l;
 }

@@ -12,46 +12,46 @@
 namespace navaid::planning {
 
 namespace {
-const PathGuidanceConfig kDefaults;
-const ConfigKey<double> kMaxHeadingSigma{"planning.guidance.max_heading_sigma_deg",
-                                         rad_to_deg(kDefaults.max_heading_sigma_rad), {0.1, 180.0},
+const PathGuidanceConfig kPathGuidanceDefaults;
+const ConfigKey<double> kPathGuidanceMaxHeadingSigma{"planning.guidance.max_heading_sigma_deg",
+                                         rad_to_deg(kPathGuidanceDefaults.max_heading_sigma_rad), {0.1, 180.0},
                                          "guidance waits (locating) while the heading sigma exceeds this [deg]"};
 const ConfigKey<double> kMaxRegistrationYawSigma{"planning.guidance.max_registration_yaw_sigma_deg",
-                                                 rad_to_deg(kDefaults.max_registration_yaw_sigma_rad), {0.1, 180.0},
+                                                 rad_to_deg(kPathGuidanceDefaults.max_registration_yaw_sigma_rad), {0.1, 180.0},
                                                  "guidance waits while the GPS-map registration's yaw sigma exceeds "
                                                  "this [deg]"};
 const ConfigKey<double> kMaxRegistrationXySigma{"planning.guidance.max_registration_xy_sigma_m",
-                                                kDefaults.max_registration_xy_sigma_m, {0.01, 1000.0},
+                                                kPathGuidanceDefaults.max_registration_xy_sigma_m, {0.01, 1000.0},
                                                 "guidance waits while the registration's position sigma exceeds this "
                                                 "[m]"};
-const ConfigKey<double> kConfidenceSigmaXy{"planning.guidance.confidence_sigma_xy_m", kDefaults.confidence_sigma_xy_m,
+const ConfigKey<double> kConfidenceSigmaXy{"planning.guidance.confidence_sigma_xy_m", kPathGuidanceDefaults.confidence_sigma_xy_m,
                                            {0.01, 100.0}, "guidance confidence falls linearly to 0 at this sigma_xy [m]"};
-const ConfigKey<std::string> kScope{"planning.guidance.scope", std::string("window"), {"window", "absolute"},
+const ConfigKey<std::string> kPathGuidanceScope{"planning.guidance.scope", std::string("window"), {"window", "absolute"},
                                     "judge the uncertainty gained over the window or the absolute one (as the "
                                     "mapping gate)"};
-const ConfigKey<double> kWindow{"planning.guidance.window_s", kDefaults.window_s, {0.1, 3600.0},
+const ConfigKey<double> kPathGuidanceWindow{"planning.guidance.window_s", kPathGuidanceDefaults.window_s, {0.1, 3600.0},
                                 "scope window of the guidance's uncertainty [s]"};
-const ConfigKey<double> kReplanPeriod{"planning.guidance.replan_period_s", kDefaults.replan_period_s, {0.01, 3600.0},
+const ConfigKey<double> kReplanPeriod{"planning.guidance.replan_period_s", kPathGuidanceDefaults.replan_period_s, {0.01, 3600.0},
                                       "re-plan at least this often [s] (the Smart Cane's guidance: 0.1 when absent)"};
 const ConfigKey<double> kReplanDirectionChange{"planning.guidance.replan_direction_change_deg",
-                                               rad_to_deg(kDefaults.replan_direction_change_rad), {0.1, 180.0},
+                                               rad_to_deg(kPathGuidanceDefaults.replan_direction_change_rad), {0.1, 180.0},
                                                "re-plan when the goal direction turned by this [deg]"};
-const ConfigKey<double> kReplanGoalShift{"planning.guidance.replan_goal_shift_m", kDefaults.replan_goal_shift_m,
+const ConfigKey<double> kReplanGoalShift{"planning.guidance.replan_goal_shift_m", kPathGuidanceDefaults.replan_goal_shift_m,
                                          {0.01, 100.0}, "re-plan when the goal moved this far [m]"};
-const ConfigKey<double> kReplanOffPath{"planning.guidance.replan_off_path_m", kDefaults.replan_off_path_m,
+const ConfigKey<double> kReplanOffPath{"planning.guidance.replan_off_path_m", kPathGuidanceDefaults.replan_off_path_m,
                                        {0.05, 100.0}, "re-plan when the user is further than this from the path [m]"};
-const ConfigKey<double> kArriveRadius{"planning.guidance.arrive_radius_m", kDefaults.arrive_radius_m, {0.01, 100.0},
+const ConfigKey<double> kArriveRadius{"planning.guidance.arrive_radius_m", kPathGuidanceDefaults.arrive_radius_m, {0.01, 100.0},
                                       "point goals: arrived within this distance [m]"};
 }  // namespace
 
 ConfigSchema path_guidance_config_schema() {
   return path_follower_config_schema()
-      .add(kMaxHeadingSigma)
+      .add(kPathGuidanceMaxHeadingSigma)
       .add(kMaxRegistrationYawSigma)
       .add(kMaxRegistrationXySigma)
       .add(kConfidenceSigmaXy)
-      .add(kScope)
-      .add(kWindow)
+      .add(kPathGuidanceScope)
+      .add(kPathGuidanceWindow)
       .add(kReplanPeriod)
       .add(kReplanDirectionChange)
       .add(kReplanGoalShift)
@@ -62,12 +62,12 @@ ConfigSchema path_guidance_config_schema() {
 PathGuidanceConfig read_path_guidance_config(const Config& config) {
   PathGuidanceConfig c;
   c.follow = read_path_follower_config(config);
-  c.max_heading_sigma_rad = deg_to_rad(get(config, kMaxHeadingSigma));
+  c.max_heading_sigma_rad = deg_to_rad(get(config, kPathGuidanceMaxHeadingSigma));
   c.max_registration_yaw_sigma_rad = deg_to_rad(get(config, kMaxRegistrationYawSigma));
   c.max_registration_xy_sigma_m = get(config, kMaxRegistrationXySigma);
   c.confidence_sigma_xy_m = get(config, kConfidenceSigmaXy);
-  c.scope = get(config, kScope) == "window" ? mapping::UncertaintyScope::kWindow : mapping::UncertaintyScope::kAbsolute;
-  c.window_s = get(config, kWindow);
+  c.scope = get(config, kPathGuidanceScope) == "window" ? mapping::UncertaintyScope::kWindow : mapping::UncertaintyScope::kAbsolute;
+  c.window_s = get(config, kPathGuidanceWindow);
   c.replan_period_s = get(config, kReplanPeriod);
   c.replan_direction_change_rad = deg_to_rad(get(config, kReplanDirectionChange));
   c.replan_goal_shift_m = get(config, kReplanGoalShift);

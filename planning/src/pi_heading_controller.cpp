@@ -8,14 +8,14 @@
 namespace navaid::planning {
 
 namespace {
-const PiHeadingConfig kDefaults;
-const ConfigKey<double> kKp{"planning.pi.kp", kDefaults.kp, {0.0, 10.0}, "proportional gain of the PI heading controller"};
-const ConfigKey<double> kKi{"planning.pi.ki", kDefaults.ki, {0.0, 10.0}, "integral gain of the PI heading controller"};
-const ConfigKey<double> kIntegralLimit{"planning.pi.integral_limit_rad_s", kDefaults.integral_limit_rad_s, {0.0, 100.0},
+const PiHeadingConfig kPiHeadingControllerDefaults;
+const ConfigKey<double> kKp{"planning.pi.kp", kPiHeadingControllerDefaults.kp, {0.0, 10.0}, "proportional gain of the PI heading controller"};
+const ConfigKey<double> kKi{"planning.pi.ki", kPiHeadingControllerDefaults.ki, {0.0, 10.0}, "integral gain of the PI heading controller"};
+const ConfigKey<double> kIntegralLimit{"planning.pi.integral_limit_rad_s", kPiHeadingControllerDefaults.integral_limit_rad_s, {0.0, 100.0},
                                        "bound on the integral of the heading error [rad s]"};
-const ConfigKey<double> kOutputLimit{"planning.pi.output_limit", kDefaults.output_limit, {1e-6, 100.0},
+const ConfigKey<double> kOutputLimit{"planning.pi.output_limit", kPiHeadingControllerDefaults.output_limit, {1e-6, 100.0},
                                      "bound on the controller's output"};
-const ConfigKey<double> kMaxDt{"planning.pi.max_dt_s", kDefaults.max_dt_s, {1e-6, 10.0},
+const ConfigKey<double> kMaxDt{"planning.pi.max_dt_s", kPiHeadingControllerDefaults.max_dt_s, {1e-6, 10.0},
                                "a longer gap between updates restarts the integral [s]"};
 }  // namespace
 

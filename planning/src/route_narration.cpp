@@ -13,7 +13,6 @@ namespace navaid::planning {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Polyline {
   std::vector<Vec2> p;
@@ -30,7 +29,7 @@ struct Polyline {
 
 std::string compass(double heading_rad) {
   static const char* names[] = {"east", "north-east", "north", "north-west", "west", "south-west", "south", "south-east"};
-  const double octant = std::round(heading_rad / (kPi / 4));
+  const double octant = std::round(heading_rad / (M_PI / 4));
   const int k = ((static_cast<int>(octant) % 8) + 8) % 8;
   return names[k];
 }
@@ -53,16 +52,16 @@ std::string crossing_phrase(const RouteCrossing& c) {
 }  // namespace
 
 namespace {
-const NarrationConfig kDefaults;
-const ConfigKey<double> kStraight{"planning.route.narration.straight_deg", kDefaults.straight_deg, {0.0, 90.0},
+const NarrationConfig kRouteNarrationDefaults;
+const ConfigKey<double> kStraight{"planning.route.narration.straight_deg", kRouteNarrationDefaults.straight_deg, {0.0, 90.0},
                                   "smaller heading changes are not turns [deg]"};
-const ConfigKey<double> kSlight{"planning.route.narration.slight_deg", kDefaults.slight_deg, {0.0, 180.0},
+const ConfigKey<double> kSlight{"planning.route.narration.slight_deg", kRouteNarrationDefaults.slight_deg, {0.0, 180.0},
                                 "up to this a turn is slight [deg] (>= straight_deg)"};
-const ConfigKey<double> kSharp{"planning.route.narration.sharp_deg", kDefaults.sharp_deg, {0.0, 180.0},
+const ConfigKey<double> kSharp{"planning.route.narration.sharp_deg", kRouteNarrationDefaults.sharp_deg, {0.0, 180.0},
                                "beyond this a turn is sharp [deg] (>= slight_deg)"};
-const ConfigKey<double> kTurnWindow{"planning.route.narration.turn_window_m", kDefaults.turn_window_m, {0.5, 100.0},
+const ConfigKey<double> kTurnWindow{"planning.route.narration.turn_window_m", kRouteNarrationDefaults.turn_window_m, {0.5, 100.0},
                                     "headings are taken over this arc before and after a vertex [m]"};
-const ConfigKey<double> kLandmarkRadius{"planning.route.narration.landmark_radius_m", kDefaults.landmark_radius_m,
+const ConfigKey<double> kLandmarkRadius{"planning.route.narration.landmark_radius_m", kRouteNarrationDefaults.landmark_radius_m,
                                         {0.0, 1000.0}, "landmarks this close to the destination are named [m]"};
 }  // namespace
 
@@ -113,12 +112,12 @@ std::vector<Instruction> narrate_route(const Route& route, const FootGraph& grap
     double delta;
   };
   std::vector<Candidate> candidates;
-  const double straight = config.straight_deg * kPi / 180.0;
+  const double straight = config.straight_deg * M_PI / 180.0;
   for (std::size_t i = 1; i + 1 < line.p.size(); ++i) {
     const Vec2 before = line.point_at(line.at[i] - w);
     const Vec2 after = line.point_at(line.at[i] + w);
     if ((line.p[i] - before).norm() < 0.25 * w || (after - line.p[i]).norm() < 0.25 * w) continue;
-    const double delta = std::remainder(heading(line.p[i], after) - heading(before, line.p[i]), 2 * kPi);
+    const double delta = std::remainder(heading(line.p[i], after) - heading(before, line.p[i]), 2 * M_PI);
     if (std::abs(delta) >= straight) candidates.push_back({i, delta});
   }
   for (std::size_t k = 0; k < candidates.size();) {
@@ -127,7 +126,7 @@ std::vector<Instruction> narrate_route(const Route& route, const FootGraph& grap
       if (std::abs(candidates[j].delta) > std::abs(candidates[best].delta)) best = j;
     }
     const Candidate& c = candidates[best];
-    const double deg = c.delta * 180.0 / kPi;
+    const double deg = c.delta * 180.0 / M_PI;
     const double mag = std::abs(deg);
     Instruction t;
     t.kind = InstructionKind::kTurn;

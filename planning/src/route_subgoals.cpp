@@ -13,7 +13,7 @@ namespace navaid::planning {
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kRouteSubgoalsDeg = 3.14159265358979323846 / 180.0;
 
 /// Closest point of segment ab to p: the parameter t in [0, 1].
 double closest_t(const Vec2& a, const Vec2& b, const Vec2& p) {
@@ -27,12 +27,12 @@ double closest_t(const Vec2& a, const Vec2& b, const Vec2& p) {
 LocalEnu::LocalEnu(const GeodeticOrigin& origin) : origin_(origin) {
   constexpr double a = 6378137.0;              // WGS84 semi-major axis
   constexpr double e2 = 6.69437999014e-3;      // first eccentricity squared
-  const double s = std::sin(origin.latitude_deg * kDeg);
+  const double s = std::sin(origin.latitude_deg * kRouteSubgoalsDeg);
   const double w = 1.0 - e2 * s * s;
   const double meridian = a * (1.0 - e2) / (w * std::sqrt(w));  // M
   const double normal = a / std::sqrt(w);                        // N
-  m_per_deg_lat_ = meridian * kDeg;
-  m_per_deg_lon_ = normal * std::cos(origin.latitude_deg * kDeg) * kDeg;
+  m_per_deg_lat_ = meridian * kRouteSubgoalsDeg;
+  m_per_deg_lon_ = normal * std::cos(origin.latitude_deg * kRouteSubgoalsDeg) * kRouteSubgoalsDeg;
 }
 
 Vec2 LocalEnu::to_enu(const GeoPoint& p) const {
@@ -46,16 +46,16 @@ GeoPoint LocalEnu::to_geo(const Vec2& enu) const {
 namespace {
 const ConfigKey<double> kSubroute{"planning.route.subroute_m", SubRouteConfig{}.subroute_m, {0.5, 1000.0},
                                   "length of one sub-route of a long route [m]"};
-const ConfigKey<double> kWindow{"planning.route.window_m", SubRouteConfig{}.window_m, {1.0, 200.0},
+const ConfigKey<double> kRouteSubgoalsWindow{"planning.route.window_m", SubRouteConfig{}.window_m, {1.0, 200.0},
                                 "side of the local map around the user for sub-route subgoals [m]"};
 }  // namespace
 
-ConfigSchema sub_route_config_schema() { return ConfigSchema().add(kSubroute).add(kWindow); }
+ConfigSchema sub_route_config_schema() { return ConfigSchema().add(kSubroute).add(kRouteSubgoalsWindow); }
 
 SubRouteConfig sub_route_config(const Config& config) {
   SubRouteConfig c;
   c.subroute_m = get(config, kSubroute);
-  c.window_m = get(config, kWindow);
+  c.window_m = get(config, kRouteSubgoalsWindow);
   return c;
 }
 

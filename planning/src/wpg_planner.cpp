@@ -192,69 +192,69 @@ std::vector<LfpcInput> wpg_inputs(const WpgConfig& c) {
 }
 
 namespace {
-const WpgConfig kDefaults;
-const ConfigKey<double> kGravity{"planning.wpg.gravity", kDefaults.lipm.gravity, {0.1, 100.0}, "LIPM gravity [m/s^2]"};
-const ConfigKey<double> kComHeight{"planning.wpg.com_height_m", kDefaults.lipm.com_height_m, {0.1, 3.0},
+const WpgConfig kWpgPlannerDefaults;
+const ConfigKey<double> kGravity{"planning.wpg.gravity", kWpgPlannerDefaults.lipm.gravity, {0.1, 100.0}, "LIPM gravity [m/s^2]"};
+const ConfigKey<double> kComHeight{"planning.wpg.com_height_m", kWpgPlannerDefaults.lipm.com_height_m, {0.1, 3.0},
                                    "LIPM height of the centre of mass [m]"};
-const ConfigKey<double> kSupportTime{"planning.wpg.support_time_s", kDefaults.lipm.support_time_s, {0.05, 2.0},
+const ConfigKey<double> kSupportTime{"planning.wpg.support_time_s", kWpgPlannerDefaults.lipm.support_time_s, {0.05, 2.0},
                                      "LIPM support time of one step [s]"};
-const ConfigKey<double> kLfpcGain{"planning.wpg.lfpc_gain", kDefaults.lfpc_gain, {0.0, 10.0},
+const ConfigKey<double> kLfpcGain{"planning.wpg.lfpc_gain", kWpgPlannerDefaults.lfpc_gain, {0.0, 10.0},
                                   "b: LFPC gain (must keep eq. 8 stable for the LIPM)"};
 const ConfigKey<std::vector<double>> kStepLength{"planning.wpg.step_length_m",
-                                                 std::vector<double>{kDefaults.step_length_min_m,
-                                                                     kDefaults.step_length_max_m},
+                                                 std::vector<double>{kWpgPlannerDefaults.step_length_min_m,
+                                                                     kWpgPlannerDefaults.step_length_max_m},
                                                  2, {0.05, 2.0}, "[min, max] range of the step length a_l [m]"};
 const ConfigKey<std::vector<double>> kStepWidth{"planning.wpg.step_width_m",
-                                                std::vector<double>{kDefaults.step_width_min_m, kDefaults.step_width_max_m},
+                                                std::vector<double>{kWpgPlannerDefaults.step_width_min_m, kWpgPlannerDefaults.step_width_max_m},
                                                 2, {0.0, 1.0}, "[min, max] range of the step width a_w [m]"};
-const ConfigKey<int> kStepLengths{"planning.wpg.step_lengths", kDefaults.step_lengths, 1, 20,
+const ConfigKey<int> kStepLengths{"planning.wpg.step_lengths", kWpgPlannerDefaults.step_lengths, 1, 20,
                                   "step lengths tried, evenly spaced over the range"};
-const ConfigKey<int> kStepWidths{"planning.wpg.step_widths", kDefaults.step_widths, 1, 20,
+const ConfigKey<int> kStepWidths{"planning.wpg.step_widths", kWpgPlannerDefaults.step_widths, 1, 20,
                                  "step widths tried (1: the middle of the range)"};
-const ConfigKey<double> kMaxTurn{"planning.wpg.max_turn_deg", rad_to_deg(kDefaults.max_turn_rad), {0.0, 90.0},
+const ConfigKey<double> kMaxTurn{"planning.wpg.max_turn_deg", rad_to_deg(kWpgPlannerDefaults.max_turn_rad), {0.0, 90.0},
                                  "largest turn of one step [deg]"};
-const ConfigKey<int> kTurnsPerSide{"planning.wpg.turns_per_side", kDefaults.turns_per_side, 0, 20,
+const ConfigKey<int> kTurnsPerSide{"planning.wpg.turns_per_side", kWpgPlannerDefaults.turns_per_side, 0, 20,
                                    "turns tried on each side, evenly spaced up to max_turn_deg"};
-const ConfigKey<int> kComSamples{"planning.wpg.com_samples", kDefaults.com_samples, 1, 50,
+const ConfigKey<int> kComSamples{"planning.wpg.com_samples", kWpgPlannerDefaults.com_samples, 1, 50,
                                  "CoM positions checked along each step"};
-const ConfigKey<double> kComRadius{"planning.wpg.com_radius_m", kDefaults.com_radius_m, {0.0, 2.0},
+const ConfigKey<double> kComRadius{"planning.wpg.com_radius_m", kWpgPlannerDefaults.com_radius_m, {0.0, 2.0},
                                    "radius of the CoM sphere (the body) [m]"};
-const ConfigKey<double> kFootRadius{"planning.wpg.foot_radius_m", kDefaults.foot_radius_m, {0.0, 1.0},
+const ConfigKey<double> kFootRadius{"planning.wpg.foot_radius_m", kWpgPlannerDefaults.foot_radius_m, {0.0, 1.0},
                                     "radius of the two gait-point spheres [m]"};
-const ConfigKey<double> kClearanceKSigma{"planning.wpg.clearance_k_sigma", kDefaults.clearance_k_sigma, {0.0, 10.0},
+const ConfigKey<double> kWpgPlannerClearanceKSigma{"planning.wpg.clearance_k_sigma", kWpgPlannerDefaults.clearance_k_sigma, {0.0, 10.0},
                                          "every sphere grows by this times the estimate's sigma_xy"};
-const ConfigKey<double> kTurnWeight{"planning.wpg.turn_weight", kDefaults.turn_weight, {0.0, 100.0},
+const ConfigKey<double> kTurnWeight{"planning.wpg.turn_weight", kWpgPlannerDefaults.turn_weight, {0.0, 100.0},
                                     "sigma of eq. 9 [cost per rad]"};
-const ConfigKey<double> kRiskWeight{"planning.wpg.risk_weight", kDefaults.risk_weight, {0.0, 100.0}, "w_o of eq. 10"};
-const ConfigKey<double> kRiskDistance{"planning.wpg.risk_distance_m", kDefaults.risk_distance_m, {0.0, 10.0},
+const ConfigKey<double> kRiskWeight{"planning.wpg.risk_weight", kWpgPlannerDefaults.risk_weight, {0.0, 100.0}, "w_o of eq. 10"};
+const ConfigKey<double> kRiskDistance{"planning.wpg.risk_distance_m", kWpgPlannerDefaults.risk_distance_m, {0.0, 10.0},
                                       "d_max of eq. 10 [m]"};
-const ConfigKey<double> kTraversalWeight{"planning.wpg.traversal_weight", kDefaults.traversal_weight, {0.0, 100.0},
+const ConfigKey<double> kTraversalWeight{"planning.wpg.traversal_weight", kWpgPlannerDefaults.traversal_weight, {0.0, 100.0},
                                          "weight of the cost-map value under each step (the Smart Cane's guidance: 2 "
                                          "when absent)"};
-const ConfigKey<double> kEscapeDistance{"planning.wpg.escape_distance_m", kDefaults.escape_distance_m, {0.0, 10.0},
+const ConfigKey<double> kEscapeDistance{"planning.wpg.escape_distance_m", kWpgPlannerDefaults.escape_distance_m, {0.0, 10.0},
                                         "a start nearer an obstacle than the body may leave within this distance [m] "
                                         "(the Smart Cane's guidance: 1 when absent)"};
-const ConfigKey<double> kEscapeMinClearance{"planning.wpg.escape_min_clearance_m", kDefaults.escape_min_clearance_m,
+const ConfigKey<double> kEscapeMinClearance{"planning.wpg.escape_min_clearance_m", kWpgPlannerDefaults.escape_min_clearance_m,
                                             {0.0, 2.0}, "a start with less clearance than this stays blocked [m]"};
-const ConfigKey<double> kWalkingStartSpeed{"planning.wpg.walking_start_speed_mps", kDefaults.walking_start_speed_mps,
+const ConfigKey<double> kWalkingStartSpeed{"planning.wpg.walking_start_speed_mps", kWpgPlannerDefaults.walking_start_speed_mps,
                                            {0.0, 10.0}, "a start at least this fast is planned as a walk in progress "
                                                         "[m/s]"};
 const ConfigKey<std::string> kHeuristic{"planning.wpg.heuristic", std::string("grid"), {"grid", "euclidean"},
                                         "search heuristic: coarse-grid distance or straight line"};
-const ConfigKey<double> kHeuristicCell{"planning.wpg.heuristic_cell_m", kDefaults.heuristic_cell_m, {0.01, 10.0},
+const ConfigKey<double> kHeuristicCell{"planning.wpg.heuristic_cell_m", kWpgPlannerDefaults.heuristic_cell_m, {0.01, 10.0},
                                        "cell of the coarse-grid heuristic [m]"};
-const ConfigKey<double> kHeuristicWeight{"planning.wpg.heuristic_weight", kDefaults.heuristic_weight, {1.0, 10.0},
+const ConfigKey<double> kHeuristicWeight{"planning.wpg.heuristic_weight", kWpgPlannerDefaults.heuristic_weight, {1.0, 10.0},
                                          "weight of the heuristic"};
-const ConfigKey<double> kPruneCell{"planning.wpg.prune_cell_m", kDefaults.prune_cell_m, {0.01, 5.0},
+const ConfigKey<double> kPruneCell{"planning.wpg.prune_cell_m", kWpgPlannerDefaults.prune_cell_m, {0.01, 5.0},
                                    "Prune(): one node per cell of this size and heading bin [m]"};
-const ConfigKey<int> kHeadingBins{"planning.wpg.heading_bins", kDefaults.heading_bins, 1, 360,
+const ConfigKey<int> kHeadingBins{"planning.wpg.heading_bins", kWpgPlannerDefaults.heading_bins, 1, 360,
                                   "Prune(): heading bins of a full turn"};
-const ConfigKey<double> kGoalTolerance{"planning.wpg.goal_tolerance_m", kDefaults.goal_tolerance_m, {0.01, 10.0},
+const ConfigKey<double> kGoalTolerance{"planning.wpg.goal_tolerance_m", kWpgPlannerDefaults.goal_tolerance_m, {0.01, 10.0},
                                        "NearEnd(): the goal is reached within this [m]"};
-const ConfigKey<double> kHorizon{"planning.wpg.horizon_m", kDefaults.horizon_m, {0.0, 1000.0},
+const ConfigKey<double> kHorizon{"planning.wpg.horizon_m", kWpgPlannerDefaults.horizon_m, {0.0, 1000.0},
                                  "ReachHorizon(): plan this far; 0 = to the goal (the Smart Cane's guidance: 10 when "
                                  "absent)"};
-const ConfigKey<double> kDirectionBeta{"planning.wpg.direction_beta", kDefaults.direction_beta, {0.0, 1e4},
+const ConfigKey<double> kDirectionBeta{"planning.wpg.direction_beta", kWpgPlannerDefaults.direction_beta, {0.0, 1e4},
                                        "directional subgoals: weight of 1 - cos"};
 }  // namespace
 
@@ -273,7 +273,7 @@ ConfigSchema wpg_config_schema() {
       .add(kComSamples)
       .add(kComRadius)
       .add(kFootRadius)
-      .add(kClearanceKSigma)
+      .add(kWpgPlannerClearanceKSigma)
       .add(kTurnWeight)
       .add(kRiskWeight)
       .add(kRiskDistance)
@@ -323,7 +323,7 @@ WpgConfig read_wpg_config(const Config& config) {
   c.com_samples = get(config, kComSamples);
   c.com_radius_m = get(config, kComRadius);
   c.foot_radius_m = get(config, kFootRadius);
-  c.clearance_k_sigma = get(config, kClearanceKSigma);
+  c.clearance_k_sigma = get(config, kWpgPlannerClearanceKSigma);
   c.turn_weight = get(config, kTurnWeight);
   c.risk_weight = get(config, kRiskWeight);
   c.risk_distance_m = get(config, kRiskDistance);
