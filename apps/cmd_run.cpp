@@ -19,6 +19,7 @@ struct RunArgs {
   std::filesystem::path recording, out, config_file;
   std::string device;
   std::filesystem::path voice;
+  std::filesystem::path save_features;
   std::vector<std::string> overrides;
   bool realtime = false;
   runtime::RealtimeOptions realtime_options;
@@ -44,6 +45,7 @@ void run(const RunArgs& a) {
   o.realtime_options = a.realtime_options;
   o.device_queue = a.device_queue;
   o.voice = a.voice;
+  o.save_features = a.save_features;
   o.plot = !a.no_plot;
   o.bag = a.bag.conversion();
   o.bag_options_given = a.bag.given();
@@ -69,6 +71,9 @@ void add_run_command(CLI::App& app) {
                   "(navaid listen's voice_event.csv; times in s from the recording's start): repeat, where am i, stop "
                   "guidance, go to <place> (a route's landmark)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--save-features", a->save_features,
+                  "Image input: also save the front end's tracks as a feature-level recording in this folder (the "
+                  "recording without images, features.csv the tracks), to run them through a back end alone");
   cmd->add_option("--device-queue", a->device_queue,
                   "With --device --realtime: estimates that may wait for the device thread (the oldest is dropped)")
       ->capture_default_str();

@@ -28,6 +28,7 @@
 #include "navaid/io/image_io.hpp"
 #include "navaid/io/open_input.hpp"
 #include "navaid/io/tum_trajectory.hpp"
+#include "navaid/io/navaid_recording.hpp"
 #include "navaid/experiments/map_session.hpp"
 #include "navaid/experiments/progress.hpp"
 #include "navaid/experiments/recording_mission.hpp"
@@ -398,6 +399,17 @@ CameraInput camera_input(const io::Recording& recording, const std::string& came
   return {input, camera_frames, any_depth};
 }
 
+/// The recording as a feature-level one: its images and ground-truth landmarks (whose ids are the
+/// simulator's tracks, not the front end's) left out, `tracked` as its features.csv.
+void save_tracked_features(const io::Recording& recording, std::vector<FeatureFrame> tracked,
+                           const std::filesystem::path& folder) {
+  io::Recording saved = recording;
+  saved.frames.clear();
+  saved.landmarks.clear();
+  saved.features = std::move(tracked);
+  io::write_navaid_recording(saved, folder);
+}
+
 const ConfigKey<bool> kRealtimePrediction{"device.realtime_prediction", true,
                                           "--realtime: the device's stages work on the estimate predicted to a "
                                           "frame's arrival"};
@@ -440,6 +452,12 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   const Input input = camera_in.input;
   const std::size_t camera_frames = camera_in.frames;
   const bool any_depth = camera_in.any_depth;
+  if (!a.save_features.empty() && input == Input::kFeatures)
+    throw UsageError("--save-features saves what the image front end tracks; " + a.recording.string() +
+                     " is feature-level already (features.csv)");
+  if (!a.save_features.empty() && std::filesystem::exists(a.save_features) &&
+      !std::filesystem::is_empty(a.save_features))
+    throw UsageError("--save-features " + a.save_features.string() + ": the folder holds files already");
 
   estimation::SlidingWindowEstimator estimator(recording.calibration, est_config, camera, recording.origin);
   std::optional<runtime::EstimatorDriver> driver_storage;
@@ -458,7 +476,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   // record of each frame only.
   RunOutputStream stream(a.out, a.realtime);
 
-  runtime::PipelineInput pipeline_input{recording, camera, driver, {}, false, {}, {}, {}, {}};
+  runtime::PipelineInput pipeline_input{recording, camera, driver, {}, false, {}, {}, {}, {}, {}};
   pipeline_input.on_record = [&](const runtime::FrameRecord& r) { stream.add(r); };
   if (driver.image_input()) {
     pipeline_input.load_images = &load_tracking_images;
@@ -468,6 +486,8 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
                         (a.realtime ? " (real time)" : ""),
                     camera_frames);
   pipeline_input.on_progress = [&progress](std::size_t frames) { progress.update(frames); };
+  std::vector<FeatureFrame> tracked;  // --save-features
+  if (!a.save_features.empty()) pipeline_input.on_tracked = [&tracked](const FeatureFrame& f) { tracked.push_back(f); };
   // mapping.enabled: the map is built as the estimates come (map/, the same folder navaid map writes).
   std::optional<runtime::MappingStage> map_stage;
   std::optional<MapSession> map_session;
@@ -531,6 +551,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
     throw;
   }
   stream.close();
+  if (!a.save_features.empty()) save_tracked_features(recording, std::move(tracked), a.save_features);
   // The walk is over; what follows reads the whole run at once (scripts/long-walk.py tells the
   // two phases apart by this line).
   spdlog::info("{} frames estimated; evaluating the run", stream.estimates().size());
@@ -546,6 +567,7 @@ std::string run_recording_folder(const RecordingRunOptions& a) {
   j["recording"] = a.recording.string();
   j["input"] = input == Input::kImages ? "images (front end)" : "features";
   j["depth"] = est_config.use_depth;
+  if (!a.save_features.empty()) j["saved_features"] = a.save_features.string();
   j["frames"] = estimates.size();
   add_estimator_summary(j, driver.estimator(), est_config, recording);
   const nlohmann::ordered_json fractions = mode_fractions(estimates);

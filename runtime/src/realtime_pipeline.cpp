@@ -168,6 +168,7 @@ class FrontEndThread {
     // The driver tracks with the back end's latest gyro bias (with the prediction, the one after
     // every event before this frame: the wait above).
     q.features = in_.driver.track(std::move(frame));  // other cameras' frames are filtered above
+    if (in_.on_tracked) in_.on_tracked(q.features);
     q.frontend = FrontendTime{in_.driver.frontend_source().stats().ms_total, load_ms};
     track_ms_.push_back(q.frontend->track_ms);
     load_ms_.push_back(load_ms);

@@ -38,6 +38,7 @@ PipelineResult replay_pipeline(const PipelineInput& in) {
     if (is_frame && input_event) {
       const estimation::ImageFeatureSource& source = driver.frontend_source();
       frontend_pending[event_time(*input_event)] = {source.stats().ms_total, source.last_load_ms()};
+      if (in.on_tracked) in.on_tracked(std::get<FeatureFrame>(*input_event));
     }
     std::vector<StateEstimate> out;
     if (input_event) out = driver.estimate(*input_event);

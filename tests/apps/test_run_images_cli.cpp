@@ -98,11 +98,25 @@ TEST_F(RunImagesCli, TracksTheImagesAndEstimatesTheWalk) {
   EXPECT_GT(keyframes, 0u);
   EXPECT_GT(marginalizations, 0u);
 
-  // Replay is deterministic: a second run writes the same estimates bit for bit.
+  // Replay is deterministic: a second run (which also saves its front end's tracks) writes the
+  // same estimates bit for bit.
   const fs::path again = path("run-again");
-  ASSERT_EQ(run(recording(), again).status, 0);
+  const fs::path tracks = path("tracks");
+  ASSERT_EQ(run(recording(), again, " --save-features '" + tracks.string() + "'").status, 0);
   EXPECT_EQ(read_text(out / "trajectory.tum"), read_text(again / "trajectory.tum"));
   EXPECT_EQ(read_text(out / "estimates.csv"), read_text(again / "estimates.csv"));
+
+  // The front end / back end split is exact: the saved tracks, a feature-level recording, run
+  // through the back end alone give the image run's estimates bit for bit.
+  const auto saved = navaid::io::read_navaid_recording(tracks);
+  EXPECT_TRUE(saved.frames.empty());
+  EXPECT_EQ(saved.features.size(), rec.frames.size());
+  EXPECT_EQ(saved.imu.size(), rec.imu.size());
+  const fs::path back_end = path("run-tracks");
+  const auto on_tracks = run(tracks, back_end);
+  ASSERT_EQ(on_tracks.status, 0) << on_tracks.output;
+  EXPECT_EQ(nlohmann::json::parse(read_text(back_end / "summary.json"))["input"], "features");
+  EXPECT_EQ(read_text(out / "estimates.csv"), read_text(back_end / "estimates.csv"));
 }
 
 TEST_F(RunImagesCli, WithoutDepthImagesItRunsAsVio) {
@@ -160,6 +174,19 @@ TEST_F(RunImagesCli, ClearErrors) {
   const auto wrong_camera = run(path("other-camera"), path("bad"));
   EXPECT_NE(wrong_camera.status, 0);
   EXPECT_NE(wrong_camera.output.find("no image frames of camera"), std::string::npos) << wrong_camera.output;
+
+  // Tracks are saved from images only, into a folder of their own.
+  navaid::io::Recording features_only = rec;
+  features_only.frames.clear();
+  features_only.features = {navaid::FeatureFrame{rec.frames.front().t, "cam0", {}}};
+  navaid::io::write_navaid_recording(features_only, path("features-only"));
+  const auto from_features = run(path("features-only"), path("bad"), " --save-features '" + path("t1").string() + "'");
+  EXPECT_NE(from_features.status, 0);
+  EXPECT_NE(from_features.output.find("feature-level already"), std::string::npos) << from_features.output;
+  navaid::testing::write_text(path("taken") / "note.txt", "mine");
+  const auto taken = run(recording(), path("bad"), " --save-features '" + path("taken").string() + "'");
+  EXPECT_NE(taken.status, 0);
+  EXPECT_NE(taken.output.find("holds files already"), std::string::npos) << taken.output;
 
   // A trajectory file is not a recording.
   const auto not_recording = run(recording() / "groundtruth.tum", path("bad"));

@@ -99,7 +99,7 @@ TEST(EstimatorDriver, ReplayPerEventAndDeviceDrivingAreOneEntryPoint) {
   EstimatorDriver replayed(make_estimator(rec));
   std::vector<StateEstimate> from_replay;
   const std::string camera = rec.calibration.cameras.front().name;
-  navaid::runtime::PipelineInput in{rec, camera, replayed, {}, false, {}, {}, {}, {}};
+  navaid::runtime::PipelineInput in{rec, camera, replayed, {}, false, {}, {}, {}, {}, {}};
   in.on_record = [&](const navaid::runtime::FrameRecord& r) { from_replay.push_back(r.estimate); };
   std::size_t progress_calls = 0;
   in.on_progress = [&](std::size_t) { ++progress_calls; };
@@ -144,7 +144,7 @@ TEST(EstimatorDriver, FrontEndCallsNeedImageInput) {
   EstimatorDriver driver(make_estimator(rec));
   EXPECT_THROW(driver.track(navaid::RgbdFrame{}), navaid::Error);
   EXPECT_THROW(driver.add_frontend_imu(navaid::ImuSample{}), navaid::Error);
-  navaid::runtime::PipelineInput in{rec, "cam0", driver, {}, false, {}, {}, {}, {}};
+  navaid::runtime::PipelineInput in{rec, "cam0", driver, {}, false, {}, {}, {}, {}, {}};
   EXPECT_THROW(navaid::runtime::replay_pipeline(in), navaid::Error);  // no on_record
 }
 

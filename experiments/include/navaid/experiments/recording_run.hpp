@@ -21,6 +21,10 @@ struct RecordingRunOptions {
   /// start (its earliest sensor sample, as mapping.network.outages count).
   std::filesystem::path voice;
   bool plot = true;              ///< topview.png, cues.png, report.html
+  /// Image input: the front end's tracks are also saved here as a feature-level recording (the
+  /// recording without its images, features.csv the tracks), so that the same tracks can run
+  /// through a back end alone: navaid's, or a peer's (front-end / back-end split). Empty: none.
+  std::filesystem::path save_features;
   /// A ROS bag as the recording is first converted into out/recording with these options.
   io::RosBagConversion bag;
   bool bag_options_given = false;  ///< bag options for a recording that is not a bag are an error

@@ -57,6 +57,10 @@ struct PipelineInput {
   /// Real time only: called on the front end's thread when a camera frame of the estimator's
   /// camera arrives (its time, the wall clock), before it is loaded and tracked.
   std::function<void(Timestamp, std::chrono::steady_clock::time_point)> on_frame_arrival;
+  /// Image input: called with every frame the front end tracked, as the estimator gets it (replay:
+  /// in order on the one thread; real time: in order on the front end's thread), e.g. to save the
+  /// tracks as a feature-level recording.
+  std::function<void(const FeatureFrame&)> on_tracked;
 };
 
 struct RealtimeOptions {
