@@ -28,7 +28,7 @@
 #include "navaid/experiments/config_schema.hpp"
 #include "navaid/experiments/run_folder.hpp"
 #include "navaid/interaction/guidance_timeline_csv.hpp"
-#include "navaid/io/image_io.hpp"
+#include "navaid/runtime/tag_target.hpp"
 #include "navaid/io/targets_csv.hpp"
 #include "navaid/core/csv_field.hpp"
 #include "navaid/planning/angles.hpp"
@@ -205,16 +205,13 @@ void run(const HandGuideArgs& a) {
   Progress progress("hand guidance", frames.size());
   for (std::size_t i = 0; i < frames.size(); ++i) {
     progress.update(i);
-    RgbdFrame frame = frames[i];
-    frame.labels_path.clear();
-    frame.confidence_path.clear();
-    io::load_frame_images(frame);
-    const ImageU8 gray = io::to_gray(frame.intensity, frame.intensity_path);
-    const auto tag = planning::find_tag(detector.detect(gray, camera.get()), tag_id);
-    std::optional<planning::TargetDetection> detection;
-    if (tag) {
-      detection = planning::target_from_tag(*tag, frame.depth, guidance_config.patch_half_px, depth_min, depth_max);
-    }
+    const RgbdFrame& frame = frames[i];
+    const std::optional<runtime::TagTarget> seen = runtime::detect_tag_target(
+        frame, detector, camera.get(), {tag_id, guidance_config.patch_half_px, depth_min, depth_max});
+    const std::optional<planning::AprilTagDetection> tag =
+        seen ? std::optional<planning::AprilTagDetection>(seen->tag) : std::nullopt;
+    const std::optional<planning::TargetDetection> detection =
+        seen ? std::optional<planning::TargetDetection>(seen->target) : std::nullopt;
     StateEstimate estimate;
     if (poses[i]) {
       estimate = *poses[i];

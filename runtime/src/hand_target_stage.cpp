@@ -11,7 +11,7 @@
 #include "navaid/core/errors.hpp"
 #include "navaid/runtime/guidance_stage.hpp"
 #include "navaid/runtime/config_schema.hpp"
-#include "navaid/io/image_io.hpp"
+#include "navaid/runtime/tag_target.hpp"
 #include "navaid/planning/apriltag_detector.hpp"
 #include "navaid/planning/config_schema.hpp"
 #include "navaid/planning/hand_guidance.hpp"
@@ -61,16 +61,12 @@ class HandTargetStage final : public GuidanceStage {
   GuidanceOutput update(const GuidanceInput& in) override {
     GuidanceOutput out;
     out.planner = "hand-guidance";
-    RgbdFrame frame = in.frame;
-    frame.labels_path.clear();
-    frame.confidence_path.clear();
-    io::load_frame_images(frame);
-    const ImageU8 gray = io::to_gray(frame.intensity, frame.intensity_path);
-    const auto tag = planning::find_tag(detector_.detect(gray, camera_.get()), tag_id_);
+    const std::optional<TagTarget> seen = detect_tag_target(
+        in.frame, detector_, camera_.get(), {tag_id_, guidance_config_.patch_half_px, depth_min_m_, depth_max_m_});
     std::optional<planning::TargetDetection> detection;
-    if (tag) {
+    if (seen) {
       ++detected_;
-      detection = planning::target_from_tag(*tag, frame.depth, guidance_config_.patch_half_px, depth_min_m_, depth_max_m_);
+      detection = seen->target;
     }
     out.command = guidance_.update(in.estimate, detection);
     ++reasons_[std::string(planning::to_string(out.command.reason))];
