@@ -208,10 +208,8 @@ void run(const HandGuideArgs& a) {
     const RgbdFrame& frame = frames[i];
     const std::optional<runtime::TagTarget> seen = runtime::detect_tag_target(
         frame, detector, camera.get(), {tag_id, guidance_config.patch_half_px, depth_min, depth_max});
-    const std::optional<planning::AprilTagDetection> tag =
-        seen ? std::optional<planning::AprilTagDetection>(seen->tag) : std::nullopt;
-    const std::optional<planning::TargetDetection> detection =
-        seen ? std::optional<planning::TargetDetection>(seen->target) : std::nullopt;
+    std::optional<planning::TargetDetection> detection;
+    if (seen) detection = seen->target;
     StateEstimate estimate;
     if (poses[i]) {
       estimate = *poses[i];
@@ -260,7 +258,7 @@ void run(const HandGuideArgs& a) {
       } else if (detection) {
         ++detected_out_of_view;
       }
-      if (detection && truth.centre_projects) centre_error_px.add((tag->centre_px - truth.centre_px).norm());
+      if (detection && truth.centre_projects) centre_error_px.add((seen->tag.centre_px - truth.centre_px).norm());
       if (cmd.target_H) target_error_m[kase].add((*cmd.target_H - truth.P_H).norm());
     }
 
@@ -270,7 +268,8 @@ void run(const HandGuideArgs& a) {
     row += cmd.target_H ? fmt::format(",{},{},{}", num(cmd.target_H->x()), num(cmd.target_H->y()), num(cmd.target_H->z()))
                         : std::string(",,,");
     row += "," + (cmd.heading_rad ? num(planning::rad_to_deg(*cmd.heading_rad)) : std::string());
-    row += fmt::format(",{},{},{}", detection ? 1 : 0, tag ? num(tag->centre_px.x()) : "", tag ? num(tag->centre_px.y()) : "");
+    row += fmt::format(",{},{},{}", detection ? 1 : 0, seen ? num(seen->tag.centre_px.x()) : "",
+                       seen ? num(seen->tag.centre_px.y()) : "");
     row += fmt::format(",{},{}", d ? std::to_string(d->valid) : "", d ? std::to_string(d->total) : "");
     row += fmt::format(",{}", poses[i] ? to_string(poses[i]->mode) : std::string_view("none"));
     if (truth_here) {

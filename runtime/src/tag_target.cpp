@@ -5,7 +5,7 @@
 namespace navaid::runtime {
 
 std::optional<TagTarget> detect_tag_target(RgbdFrame frame, planning::AprilTagDetector& detector,
-                                                           const CameraModel* camera, const TagTargetOptions& options) {
+                                           const CameraModel* camera, const TagTargetOptions& options) {
   frame.labels_path.clear();
   frame.confidence_path.clear();
   io::load_frame_images(frame);

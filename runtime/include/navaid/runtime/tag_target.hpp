@@ -26,6 +26,6 @@ struct TagTarget {
 /// Tag `options.tag_id` in `frame` (its images are loaded here; labels are not), nullopt when it
 /// is not in view. Throws IoError when the frame's images cannot be read.
 std::optional<TagTarget> detect_tag_target(RgbdFrame frame, planning::AprilTagDetector& detector,
-                                                           const CameraModel* camera, const TagTargetOptions& options);
+                                           const CameraModel* camera, const TagTargetOptions& options);
 
 }  // namespace navaid::runtime
