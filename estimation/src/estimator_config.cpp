@@ -28,10 +28,11 @@ constexpr NameTable<AnchorBearing, 2> kAnchorBearingNames{{
     {AnchorBearing::kFixed, "fixed"},
     {AnchorBearing::kEstimated, "estimated"},
 }};
-constexpr NameTable<LeavingAnchorPolicy, 3> kLeavingAnchorNames{{
+constexpr NameTable<LeavingAnchorPolicy, 4> kLeavingAnchorNames{{
     {LeavingAnchorPolicy::kReuse, "reuse"},
     {LeavingAnchorPolicy::kRestart, "restart"},
     {LeavingAnchorPolicy::kReanchor, "reanchor"},
+    {LeavingAnchorPolicy::kHandOver, "hand_over"},
 }};
 constexpr NameTable<Depth3dCovariance, 2> kDepth3dCovarianceNames{{
     {Depth3dCovariance::kFull, "full"},
@@ -197,7 +198,7 @@ const ConfigKey<std::string> kAnchorBearing =
              "a landmark's bearing in its anchor frame: fixed or estimated");
 const ConfigKey<std::string> kLeavingAnchor =
     enum_key("estimator.features.leaving_anchor", to_string(kDefaults.leaving_anchor), kLeavingAnchorNames,
-             "a track whose anchor keyframe is marginalized: reuse, restart or reanchor");
+             "a track whose anchor keyframe is marginalized: reuse, restart, reanchor or hand_over");
 const ConfigKey<double> kDisparitySigma{"estimator.depth.disparity_sigma", kDefaults.disparity_sigma_px, {0, 100},
                                         "depth noise as a disparity sigma [px]; 0: the calibration's"};
 const ConfigKey<double> kDepthBaseline{"estimator.depth.baseline", kDefaults.depth_baseline_m, {0, 10},
@@ -231,6 +232,8 @@ const ConfigKey<std::string> kSchurOrdering =
              "elimination ordering of the Schur solvers");
 const ConfigKey<bool> kMarginalization{"estimator.marginalization", kDefaults.marginalization,
                                        "keep a marginalization prior of the states leaving the window"};
+const ConfigKey<bool> kFirstEstimates{"estimator.first_estimates", kDefaults.first_estimates,
+                                       "linearize the factors on blocks the prior holds at the prior's first estimates (FEJ)"};
 const ConfigKey<bool> kResidualDiagnostics{"estimator.diagnostics.residuals", kDefaults.residual_diagnostics,
                                            "accumulate whitened residual statistics per factor type"};
 const ConfigKey<std::string> kCovariance =
@@ -401,6 +404,7 @@ ConfigSchema estimator_config_schema() {
   s.add(kNonKeyframes);
   s.add(kSchurOrdering);
   s.add(kMarginalization);
+  s.add(kFirstEstimates);
   s.add(kResidualDiagnostics);
   s.add(kCovariance);
   s.add(kCovarianceWeights);
@@ -493,6 +497,7 @@ EstimatorConfig read_estimator_config(const Config& c) {
   e.schur_ordering = get_enum(c, kSchurOrdering, kSchurOrderingNames);
 
   e.marginalization = get(c, kMarginalization);
+  e.first_estimates = get(c, kFirstEstimates);
   e.residual_diagnostics = get(c, kResidualDiagnostics);
   e.covariance_method = get_enum(c, kCovariance, kCovarianceMethodNames);
   e.covariance_weights = get_enum(c, kCovarianceWeights, kCovarianceWeightsNames);

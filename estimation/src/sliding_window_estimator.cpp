@@ -36,6 +36,7 @@
 #include "navaid/estimation/imu_preintegration.hpp"
 #include "navaid/estimation/marginalization.hpp"
 #include "navaid/estimation/state_prior_factor.hpp"
+#include "navaid/estimation/first_estimates.hpp"
 #include "sliding_window/impl.hpp"
 #include "sliding_window/inlier_gate.hpp"
 
@@ -192,6 +193,11 @@ SlidingWindowEstimator::Impl::Impl(const Impl& o)
   if (mag_prior) mag_prior->remap(moved);
   if (extrinsic_prior) extrinsic_prior->remap(moved);
   if (time_offset_prior) time_offset_prior->remap(moved);
+  for (auto& [id, track] : tracks.tracks()) {
+    const FeatureTrack& from = o.tracks.tracks().at(id);
+    moved[from.landmark] = track.landmark;
+    moved[&from.landmark[2]] = &track.landmark[2];
+  }
   if (o.marginal_prior) {
     marginal_prior = std::make_shared<MarginalizationPrior>(*o.marginal_prior);
     marginal_prior->remap(moved);
@@ -359,7 +365,7 @@ void SlidingWindowEstimator::Impl::initialize_tracks() {
 }
 
 std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount* count,
-                                                                    std::vector<double*>* fixed_inverse_depths) {
+                                                                    std::vector<double*>* constant_blocks) {
   std::vector<Residual> out;
   // IMU between consecutive states, re-integrated when the bias moved far from its linearization.
   for (std::size_t i = 1; i < window.size() && cfg.use_imu; ++i) {
@@ -422,22 +428,27 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
   const std::uint64_t newest_id = window.back()->id;
   VisualCount c;
   for (auto& [id, track] : tracks.tracks()) {
-    if (!track.initialized || track.observations.size() < 2) continue;
+    // A handed-over track's anchor is its frozen pose and every observation is a target.
+    const bool handed_over = track.handed_over;
+    if (!track.initialized || track.observations.size() < (handed_over ? 1u : 2u)) continue;
     const TrackObservation& a = track.anchor();
-    WindowState* anchor = nullptr;
+    double* anchor_pose = handed_over ? track.frozen_anchor_pose : nullptr;
     for (auto& s : window)
-      if (s->id == a.frame_id) anchor = s.get();
-    if (!anchor) continue;
-    const SE3 T_W_Ca = T_W_C(*anchor);
-    const bool near = a.depth_m && *a.depth_m <= cfg.far_threshold_m && sigma_lambda > 0;
+      if (!handed_over && s->id == a.frame_id) anchor_pose = s->pose;
+    if (!anchor_pose) continue;
+    if (handed_over && constant_blocks) constant_blocks->push_back(anchor_pose);
+    const SE3 T_W_Ca = pose_from_block(anchor_pose) * pose_from_block(extrinsic);
+    // near: the anchor's depth measurement is used (anchor factors, and the targets' depths).
+    const bool near = !handed_over && a.depth_m && *a.depth_m <= cfg.far_threshold_m && sigma_lambda > 0;
+    const bool target_depths = near || (handed_over && sigma_lambda > 0);
     const bool fixed = far_fixed(track);
     // A landmark held constant keeps its bearing too (the plain factors, VINS-RGBD style).
-    const bool estimated = bearing_estimated() && !fixed;
+    const bool estimated = handed_over || (bearing_estimated() && !fixed);
     double* landmark = landmark_block(track);
     std::vector<Residual> r;
     bool depth_factor = false;
     bool sees_newest = false;
-    for (std::size_t k = 1; k < track.observations.size(); ++k) {
+    for (std::size_t k = handed_over ? 0 : 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       WindowState* target = nullptr;
       for (auto& s : window)
@@ -449,12 +460,12 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
       const Vec3 p_ct = T_W_C(*target).inverse() * (T_W_Ca * (Vec3(m_a.x(), m_a.y(), 1.0) / track.inverse_depth()));
       if (!(p_ct.z() > kMinFeatureDepth)) continue;
       sees_newest |= o.frame_id == newest_id;
-      std::vector<double*> blocks{anchor->pose, target->pose, extrinsic, landmark};
+      std::vector<double*> blocks{anchor_pose, target->pose, extrinsic, landmark};
       const TimedObservation ta{a.m, a.velocity, a.td0_s}, to{o.m, o.velocity, o.td0_s};
       if (cfg.estimate_time_offset) blocks.push_back(time_offset);
       const bool td = cfg.estimate_time_offset;
       if (estimated) {
-        if (near && cfg.use_depth_3d && o.depth_m && *o.depth_m <= cfg.far_threshold_m) {
+        if (target_depths && cfg.use_depth_3d && o.depth_m && *o.depth_m <= cfg.far_threshold_m) {
           const double sl = sigma_lambda, sp = cfg.pixel_sigma_px;
           const auto model = cfg.depth_3d_covariance;
           r.push_back({td ? std::shared_ptr<ceres::CostFunction>(std::make_shared<LandmarkDepth3dTdFactor>(
@@ -488,7 +499,9 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
       }
     }
     if (r.empty()) continue;
-    if (estimated && cfg.estimate_time_offset) {
+    if (handed_over) {
+      // The anchor observation went into the prior with the anchor keyframe.
+    } else if (estimated && cfg.estimate_time_offset) {
       const TimedObservation ta{a.m, a.velocity, a.td0_s};
       r.push_back({std::make_shared<AnchorBearingTdFactor>(ta, focal_px, cfg.pixel_sigma_px), loss,
                    {track.landmark, time_offset}});
@@ -497,7 +510,7 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
     }
     // A free far feature's weak depth prior (EstimatorConfig::far_depth_sigma_scale): not a depth
     // factor of the paper's, only what keeps its inverse depth determined while the camera turns.
-    const bool far_prior = !near && !fixed && a.depth_m && sigma_lambda > 0 && cfg.far_depth_sigma_scale > 0;
+    const bool far_prior = !handed_over && !near && !fixed && a.depth_m && sigma_lambda > 0 && cfg.far_depth_sigma_scale > 0;
     const double far_sigma = sigma_lambda * cfg.far_depth_sigma_scale;
     if (estimated) {
       if (near && cfg.use_inverse_depth) {
@@ -514,7 +527,7 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
       r.push_back({std::make_shared<InverseDepthFactor>(*a.depth_m, far_sigma), nullptr, {&track.inverse_depth()},
                    "far_depth_prior"});
     }
-    if (fixed && fixed_inverse_depths) fixed_inverse_depths->push_back(&track.inverse_depth());
+    if (fixed && constant_blocks) constant_blocks->push_back(&track.inverse_depth());
     ++c.all_features;
     if (sees_newest || a.frame_id == newest_id) {
       ++c.features;
@@ -523,6 +536,11 @@ std::vector<Residual> SlidingWindowEstimator::Impl::build_residuals(VisualCount*
     for (auto& x : r) out.push_back(std::move(x));
   }
   if (count) *count = c;
+  if (cfg.first_estimates && marginal_prior && !marginal_prior->empty())
+    for (Residual& r : out)
+      if (!dynamic_cast<const MarginalizationFactor*>(r.cost.get()) &&
+          FirstEstimateCost::touches(r.blocks, *marginal_prior))
+        r.cost = std::make_shared<FirstEstimateCost>(r.cost, r.blocks, marginal_prior, pose_manifold);
   return out;
 }
 
@@ -532,8 +550,11 @@ std::shared_ptr<ceres::ParameterBlockOrdering> SlidingWindowEstimator::Impl::sch
     return nullptr;
   std::unordered_set<const double*> landmarks;
   for (auto& [id, track] : tracks.tracks()) {
+    // A landmark the prior holds shares the prior's residual with others: not an independent set.
     const double* landmark = landmark_block(track);
-    if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark)) landmarks.insert(landmark);
+    if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark) &&
+        !in_marginal_prior(landmark))
+      landmarks.insert(landmark);
   }
   // Nothing to eliminate (no landmark in this solve): Ceres chooses.
   if (landmarks.empty()) return nullptr;
@@ -647,13 +668,57 @@ void SlidingWindowEstimator::Impl::remove_failed_tracks() {
     const double z = 1.0 / track.inverse_depth();
     if (!std::isfinite(z) || z < kMinFeatureDepth || z > kMaxFeatureDepth) failed.push_back(id);
   }
+  drop_from_marginal_prior(failed);
   for (auto id : failed) tracks.erase(id);
+}
+
+std::set<const double*> SlidingWindowEstimator::Impl::hand_over_tracks_of(const WindowState& leaving) {
+  std::set<const double*> kept;
+  const std::uint64_t newest_id = window.back()->id;
+  for (auto id : tracks.anchored_at(leaving.id)) {
+    FeatureTrack& track = tracks.tracks().at(id);
+    const bool alive = track.observations.back().frame_id == newest_id && track.observations.size() >= 2;
+    if (!alive || !track.initialized || landmark_block(track) != track.landmark) continue;
+    if (!track.handed_over) {
+      // The landmark's numbers stay as they are: anchored at this pose, now frozen.
+      std::copy(leaving.pose, leaving.pose + kPoseSize, track.frozen_anchor_pose);
+      track.handed_over = true;
+      ++stats.handed_over_tracks;
+    }
+    kept.insert(track.landmark);
+  }
+  return kept;
+}
+
+void SlidingWindowEstimator::Impl::drop_from_marginal_prior(const std::vector<std::uint64_t>& track_ids) {
+  if (!marginal_prior || marginal_prior->empty()) return;
+  MarginalizationTerm term;
+  for (auto id : track_ids) {
+    const int index = marginal_prior->index_of(landmark_block(tracks.tracks().at(id)));
+    if (index >= 0) term.marginalize.push_back(index);
+  }
+  if (term.marginalize.empty()) return;
+  Marginalizer marg;
+  for (std::size_t i = 0; i < marginal_prior->blocks.size(); ++i)
+    marg.set_manifold(marginal_prior->blocks[i], marginal_prior->kinds[i]);
+  term.cost = std::make_shared<MarginalizationFactor>(marginal_prior);
+  term.blocks = marginal_prior->blocks;
+  marg.add(std::move(term));
+  try {
+    auto prior = std::make_shared<MarginalizationPrior>(marg.marginalize());
+    if (cfg.first_estimates) keep_first_estimates(*prior, *marginal_prior);
+    marginal_prior = std::move(prior);
+  } catch (const Error&) {
+    marginal_prior.reset();
+    ++stats.marginalization_failures;
+  }
 }
 
 void SlidingWindowEstimator::Impl::reanchor_tracks_of(const WindowState& leaving) {
   const SE3 T_W_Cold = T_W_C(leaving);
   for (auto id : tracks.anchored_at(leaving.id)) {
     FeatureTrack& track = tracks.tracks().at(id);
+    if (track.handed_over) continue;  // its frozen anchor stays
     if (track.observations.size() < 2) continue;  // disappears with the frame
     const WindowState* next = state(track.observations[1].frame_id);
     if (track.initialized && next) {
@@ -685,10 +750,15 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
     // of the prior (re-anchored below); the tracks that ended are marginalized whole.
     std::set<const double*> left_out;
     const std::uint64_t newest_id = window.back()->id;
+    const std::set<const double*> handed_over =
+        cfg.leaving_anchor == LeavingAnchorPolicy::kHandOver ? hand_over_tracks_of(oldest) : std::set<const double*>{};
     for (auto id : tracks.anchored_at(oldest.id)) {
       FeatureTrack& track = tracks.tracks().at(id);
+      if (handed_over.count(landmark_block(track))) continue;  // kept, its leaving observation in the prior
       const bool alive = track.observations.back().frame_id == newest_id;
-      const bool keep = cfg.leaving_anchor == LeavingAnchorPolicy::kReanchor && alive;
+      const bool keep =
+          (cfg.leaving_anchor == LeavingAnchorPolicy::kReanchor || cfg.leaving_anchor == LeavingAnchorPolicy::kHandOver) &&
+          alive;
       (keep ? left_out : leaving).insert(landmark_block(track));
       if (!keep) marginalized_tracks.push_back(id);
     }
@@ -719,7 +789,9 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
     }
     try {
       const sliding_window::GatedLoss gated(loss.get(), robust_loss.get(), cfg.prior_weights == CovarianceWeights::kInliers);
-      marginal_prior = std::make_shared<MarginalizationPrior>(marg.marginalize());
+      auto prior = std::make_shared<MarginalizationPrior>(marg.marginalize());
+      if (cfg.first_estimates && marginal_prior) keep_first_estimates(*prior, *marginal_prior);
+      marginal_prior = std::move(prior);
       ++stats.marginalizations;
       marginalized = true;
     } catch (const Error&) {
@@ -730,7 +802,8 @@ void SlidingWindowEstimator::Impl::slide_out_oldest() {
     }
     if (state_prior_id == oldest.id) state_prior.reset();  // consumed by the new prior
   }
-  if (marginalized && cfg.leaving_anchor == LeavingAnchorPolicy::kReanchor) {
+  if (marginalized && (cfg.leaving_anchor == LeavingAnchorPolicy::kReanchor ||
+                       cfg.leaving_anchor == LeavingAnchorPolicy::kHandOver)) {
     // The ended tracks' observations are all in the prior now.
     for (auto id : marginalized_tracks) tracks.erase(id);
     reanchor_tracks_of(oldest);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -166,13 +167,49 @@ TEST(SlidingWindowEstimator, IsDeterministic) {
   }
 }
 
+TEST(SlidingWindowEstimator, HandedOverLandmarksStayInThePriorAndSurviveACopy) {
+  // leaving_anchor=hand_over keeps live tracks' landmarks in the prior when their anchor leaves;
+  // a copy of the estimator (the prior's blocks remapped to the copy's tracks) continues exactly
+  // as the original does.
+  const auto& rec = short_walk();
+  const Config c = Config::parse("{}", "<test>",
+                                 {"estimator.features.leaving_anchor=hand_over", "estimator.first_estimates=true"});
+  SlidingWindowEstimator original(rec.calibration, read_estimator_config(c), {}, rec.origin);
+  std::optional<SlidingWindowEstimator> copy;
+  std::vector<StateEstimate> a, b;
+  io::SensorEventStream stream(rec);
+  std::size_t events = 0;
+  while (auto e = stream.next()) {
+    if (++events == 2000) copy.emplace(original);
+    for (auto& s : original.process(*e)) a.push_back(s);
+    if (copy)
+      for (auto& s : copy->process(*e)) b.push_back(s);
+  }
+  ASSERT_TRUE(copy.has_value());
+  EXPECT_GT(original.statistics().handed_over_tracks, 20u);
+  EXPECT_EQ(original.statistics().marginalization_failures, 0u);
+  ASSERT_GT(b.size(), 30u);
+  const std::size_t offset = a.size() - b.size();
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    ASSERT_EQ(a[offset + i].T_W_B.t, b[i].T_W_B.t) << i;
+    ASSERT_EQ(a[offset + i].covariance, b[i].covariance) << i;
+  }
+}
+
 TEST(SlidingWindowEstimator, SchurCovarianceEqualsCeresCovariance) {
   const auto& rec = short_walk();
-  // Inverse depths (1-dim landmark blocks) and estimated anchor bearings (3-dim blocks).
-  for (const std::string bearing : {"fixed", "estimated"}) {
-    const std::string key = "estimator.features.anchor_bearing=" + bearing;
-    const auto a = run(rec, {"estimator.covariance=schur", key});
-    const auto b = run(rec, {"estimator.covariance=ceres", key});
+  // Inverse depths (1-dim landmark blocks), estimated anchor bearings (3-dim blocks), and
+  // landmarks the prior holds (handed over, with first-estimate Jacobians: state columns).
+  for (const std::string bearing : {"fixed", "estimated", "hand_over"}) {
+    const std::vector<std::string> keys =
+        bearing == "hand_over"
+            ? std::vector<std::string>{"estimator.features.leaving_anchor=hand_over", "estimator.first_estimates=true"}
+            : std::vector<std::string>{"estimator.features.anchor_bearing=" + bearing};
+    std::vector<std::string> schur{"estimator.covariance=schur"}, ceres{"estimator.covariance=ceres"};
+    schur.insert(schur.end(), keys.begin(), keys.end());
+    ceres.insert(ceres.end(), keys.begin(), keys.end());
+    const auto a = run(rec, schur);
+    const auto b = run(rec, ceres);
     ASSERT_EQ(a.size(), b.size());
     std::size_t compared = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -483,7 +520,8 @@ TEST(EstimatorConfig, EveryEnumValueRoundTripsThroughItsName) {
   expect_round_trip<LeavingAnchorPolicy>("estimator.features.leaving_anchor", &EstimatorConfig::leaving_anchor,
                                          {{LeavingAnchorPolicy::kReuse, "reuse"},
                                           {LeavingAnchorPolicy::kRestart, "restart"},
-                                          {LeavingAnchorPolicy::kReanchor, "reanchor"}});
+                                          {LeavingAnchorPolicy::kReanchor, "reanchor"},
+                                          {LeavingAnchorPolicy::kHandOver, "hand_over"}});
   expect_round_trip<Depth3dCovariance>("estimator.depth.point_covariance", &EstimatorConfig::depth_3d_covariance,
                                        {{Depth3dCovariance::kFull, "full"}, {Depth3dCovariance::kPaper, "paper"}});
   expect_round_trip<LossKind>("estimator.loss.type", &EstimatorConfig::loss,

@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 
 #include "impl.hpp"
+#include "navaid/estimation/factors/landmark_factors.hpp"
 #include "inlier_gate.hpp"
 
 namespace navaid::estimation {
@@ -87,6 +88,13 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     if (problem.HasParameterBlock(time_offset)) add_column(time_offset, 1);
     for (const auto& w : window)
       if (problem.HasParameterBlock(w->gps_bias)) add_column(w->gps_bias, 3);
+    // Landmarks the prior holds are tied to each other through it: state columns, not eliminated.
+    for (auto& [id, track] : tracks.tracks()) {
+      double* landmark = landmark_block(track);
+      if (in_marginal_prior(landmark) && problem.HasParameterBlock(landmark) &&
+          !problem.IsParameterBlockConstant(landmark))
+        add_column(landmark, kLandmarkSize);
+    }
     for (const auto& w : window) {
       if (!problem.IsParameterBlockConstant(w->pose)) add_column(w->pose, kPoseTangentSize);
       if (!problem.IsParameterBlockConstant(w->speed_bias)) add_column(w->speed_bias, kSpeedBiasSize);
@@ -95,7 +103,7 @@ std::optional<NewestCovariance> SlidingWindowEstimator::Impl::newest_covariance(
     std::unordered_map<const double*, std::size_t> landmark_index;
     for (auto& [id, track] : tracks.tracks()) {
       double* landmark = landmark_block(track);
-      if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark))
+      if (problem.HasParameterBlock(landmark) && !problem.IsParameterBlockConstant(landmark) && !columns.count(landmark))
         landmark_index.emplace(landmark, landmark_index.size());
     }
     struct LandmarkInformation {

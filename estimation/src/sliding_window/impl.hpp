@@ -8,6 +8,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 #include <string>
@@ -268,6 +269,7 @@ struct SlidingWindowEstimator::Impl {
   bool bearing_estimated() const { return cfg.anchor_bearing == AnchorBearing::kEstimated; }
   /// A far track (anchor depth beyond far_threshold) whose inverse depth far_policy=fixed holds.
   bool far_fixed(const FeatureTrack& track) const {
+    if (track.handed_over) return false;
     const auto& depth = track.anchor().depth_m;
     const bool near = depth && *depth <= cfg.far_threshold_m && sigma_lambda > 0;
     return depth && !near && cfg.far_policy == FarFeaturePolicy::kFixed;
@@ -275,11 +277,23 @@ struct SlidingWindowEstimator::Impl {
   /// The track's parameter block: its whole landmark when the anchor bearing is estimated, else
   /// (and for a far-fixed track, which keeps its bearing too) its inverse depth alone.
   double* landmark_block(FeatureTrack& track) const {
-    return bearing_estimated() && !far_fixed(track) ? track.landmark : &track.inverse_depth();
+    return track.handed_over || (bearing_estimated() && !far_fixed(track)) ? track.landmark : &track.inverse_depth();
   }
+  /// A block the marginalization prior holds (a handed-over landmark's is, while its track lives).
+  bool in_marginal_prior(const double* block) const {
+    return marginal_prior && marginal_prior->index_of(block) >= 0;
+  }
+  /// Leaving anchors handed over (estimator.features.leaving_anchor = hand_over): the live tracks
+  /// anchored at `leaving` whose whole landmark is estimated keep it, anchored at the leaving
+  /// pose as it is now; returns their landmark blocks (kept in the prior, not marginalized).
+  std::set<const double*> hand_over_tracks_of(const WindowState& leaving);
+  /// Marginalizes the tracks' landmark blocks out of the prior before the tracks are erased.
+  void drop_from_marginal_prior(const std::vector<std::uint64_t>& track_ids);
   int landmark_block_size() const { return bearing_estimated() ? 3 : 1; }
 
-  std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* fixed_inverse_depths);
+  /// The window's factors; `constant_blocks` receives the blocks they hold constant (fixed inverse
+  /// depths, handed-over tracks' frozen anchors).
+  std::vector<Residual> build_residuals(VisualCount* count, std::vector<double*>* constant_blocks);
   /// Solves the window (with `newest_only`, the newest state alone, the rest held); with
   /// `covariance`, also the newest state's covariance from the whole window (nullopt on failure).
   VisualCount solve(std::optional<NewestCovariance>* covariance = nullptr, bool newest_only = false);

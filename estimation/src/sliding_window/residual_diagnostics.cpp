@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "navaid/estimation/first_estimates.hpp"
 #include "impl.hpp"
 #include "navaid/estimation/factors/depth_3d_factor.hpp"
 #include "navaid/estimation/factors/gauss_markov_factor.hpp"
@@ -25,6 +26,7 @@ bool is(const ceres::CostFunction* c) {
 }
 
 std::string factor_type(const ceres::CostFunction* c) {
+  if (const auto* fej = dynamic_cast<const FirstEstimateCost*>(c)) c = &fej->factor();
   if (is<ImuFactor>(c)) return "imu";
   if (is<ReprojectionFactor>(c) || is<ReprojectionTdFactor>(c) || is<LandmarkReprojectionFactor>(c) ||
       is<LandmarkReprojectionTdFactor>(c))

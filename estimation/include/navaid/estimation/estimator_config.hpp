@@ -21,7 +21,7 @@ enum class FarFeaturePolicy { kFree, kFixed };
 /// (VINS-Mono, "reuse"); its factors go into the prior and it is restarted at its next new
 /// observation ("restart"); or its factors stay out of the prior and it is re-anchored, so every
 /// observation counts once and the leaving anchor's bearing is given up ("reanchor").
-enum class LeavingAnchorPolicy { kReuse, kRestart, kReanchor };
+enum class LeavingAnchorPolicy { kReuse, kRestart, kReanchor, kHandOver };
 /// The bearing of a feature in its anchor keyframe: the anchor's measurement, held exact (VINS-Mono,
 /// DSO), or estimated with the inverse depth, the anchor observation then being a factor
 /// (factors/landmark_factors.hpp says why).
@@ -129,6 +129,8 @@ struct EstimatorConfig {
   SchurOrdering schur_ordering = SchurOrdering::kAuto;
 
   bool marginalization = true;
+  /// First-estimate Jacobians for the factors on blocks the prior holds (first_estimates.hpp).
+  bool first_estimates = false;
   /// Accumulate whitened residual statistics per factor type after every solve (costs one more
   /// evaluation of the window per frame).
   bool residual_diagnostics = false;

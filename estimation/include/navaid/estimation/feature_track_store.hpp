@@ -31,6 +31,12 @@ struct FeatureTrack {
   /// estimate of it (estimator.features.anchor_bearing = estimated): one contiguous parameter block.
   double landmark[3] = {0, 0, 0};
   bool initialized = false;  ///< landmark holds an estimate
+  /// Handed over (estimator.features.leaving_anchor = hand_over): the anchor keyframe left the
+  /// window while the track was alive. The landmark stays anchored at that keyframe's pose as it
+  /// was then, held constant here (a fixed frame, so the landmark keeps its meaning in the
+  /// marginalization prior), and every remaining observation is a target.
+  bool handed_over = false;
+  double frozen_anchor_pose[7] = {0, 0, 0, 0, 0, 0, 1};  ///< T_W_B of the left anchor ([p, q])
 
   const TrackObservation& anchor() const { return observations.front(); }
   double& inverse_depth() { return landmark[2]; }

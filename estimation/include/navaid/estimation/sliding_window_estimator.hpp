@@ -76,6 +76,9 @@ struct EstimatorStatistics {
   std::size_t solves_at_iteration_cap = 0;
   std::size_t marginalizations = 0;
   std::size_t marginalization_failures = 0;  ///< prior dropped, gauge pinned instead
+  /// Tracks whose anchor keyframe left while they were alive and that kept their landmark in the
+  /// prior (estimator.features.leaving_anchor = hand_over).
+  std::size_t handed_over_tracks = 0;
   /// joint: 1 once T_ENU_W was initialized from the fixes; decoupled: successful registrations
   std::size_t gps_registrations = 0;
   std::size_t covariance_failures = 0;  ///< covariance could not be computed (previous one inflated)
