@@ -231,7 +231,11 @@ void add_frame_times(nlohmann::ordered_json& j, const std::vector<FrameTiming>& 
     t["frontend_p99"] = runtime::percentile(track_ms, 0.99);
     t["image_load_median"] = runtime::percentile(load_ms, 0.5);
     t["image_load_p99"] = runtime::percentile(load_ms, 0.99);
-    j["frontend"] = {{"frames_tracked", driver.frontend_source().frames_tracked()}, {"imu_prediction", imu_prediction}};
+    const auto& source = driver.frontend_source();
+    const auto& drift = source.drift_totals();
+    j["frontend"] = {{"frames_tracked", source.frames_tracked()},
+                     {"imu_prediction", imu_prediction},
+                     {"drift_check", {{"checked", drift.checked}, {"corrected", drift.corrected}, {"dropped", drift.dropped}}}};
   }
 }
 

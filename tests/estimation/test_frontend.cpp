@@ -52,6 +52,8 @@ TEST(FrontendConfig, DefaultsAreValidAndBadValuesNameTheirKey) {
   expect_key("fb_max_level", [](FrontendConfig& c) { c.fb_max_level = -1; });
   expect_key("klt_threads", [](FrontendConfig& c) { c.klt_threads = 0; });
   expect_key("klt_threads", [](FrontendConfig& c) { c.klt_threads = 17; });
+  expect_key("drift_check_interval", [](FrontendConfig& c) { c.drift_check_interval = -1; });
+  expect_key("drift_max_px", [](FrontendConfig& c) { c.drift_max_px = 0; });
   expect_key("ransac_threshold_px", [](FrontendConfig& c) { c.ransac_threshold_px = 0; });
   expect_key("ransac_confidence", [](FrontendConfig& c) { c.ransac_confidence = 1.0; });
   expect_key("border_px", [](FrontendConfig& c) { c.border_px = -0.5; });

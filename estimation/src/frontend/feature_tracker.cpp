@@ -20,6 +20,7 @@ namespace navaid::estimation {
 struct FeatureTracker::State {
   std::vector<cv::Mat> prev_pyramid;
   std::vector<cv::Mat> cur_pyramid;
+  std::vector<cv::Mat> patches;  // per track (parallel to ids_): its birth patch, with the drift check
 };
 
 namespace {
@@ -113,6 +114,57 @@ void track_split(const std::vector<cv::Mat>& from_pyramid, const std::vector<cv:
   for (auto& w : workers) w.join();
 }
 
+// The birth patch's side: the KLT window and 5 px around it, so the window stays on the patch.
+int patch_side(const FrontendConfig& config) { return config.klt_window_px + 10; }
+
+// Aligns each track's birth patch into the frame (KLT at full resolution, from the tracked
+// position): within max_px the track moves there, farther or unconverged it is dropped (keep = 0).
+// OpenCV's KLT wants both images of one size: the patches are laid out on a frame-sized canvas
+// (as many calls as the canvas needs), each point tracked from its patch's centre.
+void align_to_birth_patches(const std::vector<cv::Mat>& patches, const std::vector<std::size_t>& which,
+                            const std::vector<cv::Mat>& frame_pyramid, const FrontendConfig& config,
+                            std::vector<Eigen::Vector2d>& uv, std::vector<char>& keep, FrontendStats& stats) {
+  if (which.empty()) return;
+  const cv::Size frame = frame_pyramid.front().size();
+  const int side = patch_side(config);
+  const int per_row = frame.width / side, per_call = per_row * (frame.height / side);
+  if (per_call == 0) return;  // an image smaller than one patch: nothing to align against
+  const float centre = 0.5f * static_cast<float>(side - 1);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config.klt_max_iterations,
+                              config.klt_epsilon);
+  const double max2 = config.drift_max_px * config.drift_max_px;
+  cv::Mat canvas(frame, CV_8UC1, cv::Scalar(0));
+  for (std::size_t begin = 0; begin < which.size(); begin += static_cast<std::size_t>(per_call)) {
+    const std::size_t end = std::min(which.size(), begin + static_cast<std::size_t>(per_call));
+    std::vector<cv::Point2f> from, to;
+    for (std::size_t k = begin; k < end; ++k) {
+      const int slot = static_cast<int>(k - begin);
+      const cv::Point corner(side * (slot % per_row), side * (slot / per_row));
+      patches[which[k]].copyTo(canvas(cv::Rect(corner, cv::Size(side, side))));
+      from.emplace_back(static_cast<float>(corner.x) + centre, static_cast<float>(corner.y) + centre);
+      to.push_back(to_cv(uv[which[k]]));
+    }
+    std::vector<uchar> status;
+    std::vector<float> err;
+    cv::calcOpticalFlowPyrLK(canvas, frame_pyramid, from, to, status, err,
+                             cv::Size(config.klt_window_px, config.klt_window_px), 0, stop,
+                             cv::OPTFLOW_USE_INITIAL_FLOW);
+    for (std::size_t k = begin; k < end; ++k) {
+      Eigen::Vector2d& p = uv[which[k]];
+      const cv::Point2f& q = to[k - begin];
+      const Eigen::Vector2d aligned(q.x, q.y);
+      ++stats.drift_checked;
+      if (!status[k - begin] || !aligned.allFinite() || !((aligned - p).squaredNorm() <= max2)) {
+        keep[which[k]] = 0;
+        ++stats.rejected_drift;
+        continue;
+      }
+      if ((aligned - p).norm() > 0.05) ++stats.drift_corrected;
+      p = aligned;
+    }
+  }
+}
+
 }  // namespace
 
 FeatureTracker::FeatureTracker(std::shared_ptr<const CameraModel> camera, const FrontendConfig& config)
@@ -130,6 +182,7 @@ void FeatureTracker::reset() {
   uv_.clear();
   age_.clear();
   state_->prev_pyramid.clear();
+  state_->patches.clear();
 }
 
 KeyframeDecision FeatureTracker::decide_keyframe(const FeatureFrame& last_keyframe, const FeatureFrame& current,
@@ -160,6 +213,8 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
   std::vector<std::uint64_t> ids;
   std::vector<int> ages;
   std::vector<Eigen::Vector2d> uv;
+  std::vector<cv::Mat> patches;  // with the drift check only
+  const bool drift_check = config_.drift_check_interval > 0;
   if (!ids_.empty() && !state_->prev_pyramid.empty()) {
     const std::size_t n = ids_.size();
     std::vector<cv::Point2f> prev(n), cur(n);
@@ -200,6 +255,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       ids.push_back(ids_[i]);
       ages.push_back(age_[i] + 1);
       uv.emplace_back(cur[i].x, cur[i].y);
+      if (drift_check) patches.push_back(state_->patches[i]);
     }
     stats_.ms_klt = ms_since(t);
 
@@ -209,13 +265,20 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       if (uv.size() != before) throw Error("front end: the track hook changed the number of tracks");
     }
 
+    std::vector<char> keep(ids.size(), 1);
+    if (drift_check) {
+      std::vector<std::size_t> due;
+      for (std::size_t i = 0; i < ids.size(); ++i)
+        if (ages[i] % config_.drift_check_interval == 0) due.push_back(i);
+      align_to_birth_patches(patches, due, state_->cur_pyramid, config_, uv, keep, stats_);
+    }
     // Border and fundamental-matrix RANSAC, on undistorted points scaled back to pixels so that the
     // threshold is an epipolar distance in pixels.
-    std::vector<char> keep(ids.size(), 1);
     std::vector<cv::Point2f> p_prev, p_cur;
     std::vector<std::size_t> which;
     std::size_t prev_index = 0;
     for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (!keep[i]) continue;
       if (!cam.in_image(uv[i], config_.border_px)) {
         keep[i] = 0;
         ++stats_.rejected_border;
@@ -245,7 +308,8 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
             ++stats_.rejected_ransac;
           }
     }
-    keep_where(keep, ids, ages, uv);
+    if (drift_check) keep_where(keep, ids, ages, uv, patches);
+    else keep_where(keep, ids, ages, uv);
     stats_.ms_ransac = ms_since(t);
   }
 
@@ -266,7 +330,8 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       keep[i] = 1;
       if (radius > 0) cv::circle(mask, p, radius, cv::Scalar(0), cv::FILLED);
     }
-    keep_where(keep, ids, ages, uv);
+    if (drift_check) keep_where(keep, ids, ages, uv, patches);
+    else keep_where(keep, ids, ages, uv);
   }
   stats_.tracked = ids.size();
 
@@ -285,6 +350,10 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       ids.push_back(next_id_++);
       ages.push_back(1);
       uv.push_back(p);
+      if (drift_check) {
+        patches.emplace_back();
+        cv::getRectSubPix(grey, cv::Size(patch_side(config_), patch_side(config_)), c, patches.back());
+      }
       ++stats_.new_features;
     }
   }
@@ -314,6 +383,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
   ids_ = std::move(ids);
   age_ = std::move(ages);
   uv_ = std::move(uv);
+  state_->patches = std::move(patches);
   std::swap(state_->prev_pyramid, state_->cur_pyramid);
   stats_.ms_total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   return out;

@@ -44,6 +44,8 @@ void validate(const FrontendConfig& c, const std::string& source) {
   check_range(source, "fb_threshold_px", c.fb_threshold_px, 0.0, kUnbounded, true, true, "a finite value > 0 px");
   check_int(source, "fb_max_level", c.fb_max_level, 0, 8, "an integer in [0, 8]");
   check_int(source, "klt_threads", c.klt_threads, 1, 16, "an integer in [1, 16]");
+  check_int(source, "drift_check_interval", c.drift_check_interval, 0, kIntUnbounded, "an integer >= 0 frames");
+  check_range(source, "drift_max_px", c.drift_max_px, 0.0, kUnbounded, true, true, "a finite value > 0 px");
   check_range(source, "ransac_threshold_px", c.ransac_threshold_px, 0.0, kUnbounded, true, true, "a finite value > 0 px");
   check_range(source, "ransac_confidence", c.ransac_confidence, 0.0, 1.0, true, true, "a value in (0, 1)");
   check_range(source, "border_px", c.border_px, 0.0, kUnbounded, false, true, "a finite value >= 0 px");

@@ -76,6 +76,10 @@ const ConfigKey<int> kFbMaxLevel{"frontend.fb_max_level", kDefaults.fb_max_level
                           "pyramid levels of the backward pass, in [0, 8]"};
 const ConfigKey<int> kKltThreads{"frontend.klt_threads", kDefaults.klt_threads, kIntMin, kIntMax,
                           "threads a KLT pass splits its points over, in [1, 16] (same result)"};
+const ConfigKey<int> kDriftCheckInterval{"frontend.drift_check_interval", kDefaults.drift_check_interval, kIntMin,
+                                          kIntMax, "align each track to its birth patch every this many frames; 0 = off"};
+const ConfigKey<double> kDriftMaxPx{"frontend.drift_max_px", kDefaults.drift_max_px, {-kInf, kInf},
+                                    "drift check: corrections up to this [px] are applied, larger drop the track"};
 const ConfigKey<bool> kRansac{"frontend.ransac", kDefaults.ransac, "fundamental-matrix RANSAC on undistorted points"};
 const ConfigKey<double> kRansacThresholdPx{"frontend.ransac_threshold_px", kDefaults.ransac_threshold_px, {-kInf, kInf},
                              "RANSAC epipolar distance limit [px], > 0"};
@@ -114,6 +118,8 @@ ConfigSchema frontend_config_schema() {
   s.add(kFbThresholdPx);
   s.add(kFbMaxLevel);
   s.add(kKltThreads);
+  s.add(kDriftCheckInterval);
+  s.add(kDriftMaxPx);
   s.add(kRansac);
   s.add(kRansacThresholdPx);
   s.add(kRansacConfidence);
@@ -144,6 +150,8 @@ FrontendConfig read_frontend_config(const Config& c) {
   f.fb_threshold_px = get(c, kFbThresholdPx);
   f.fb_max_level = get(c, kFbMaxLevel);
   f.klt_threads = get(c, kKltThreads);
+  f.drift_check_interval = get(c, kDriftCheckInterval);
+  f.drift_max_px = get(c, kDriftMaxPx);
   f.ransac = get(c, kRansac);
   f.ransac_threshold_px = get(c, kRansacThresholdPx);
   f.ransac_confidence = get(c, kRansacConfidence);
@@ -239,6 +247,9 @@ std::optional<FeatureFrame> ImageFeatureSource::track(RgbdFrame frame) {
   out.t = frame.t;
   out.camera = camera_name_;
   ++frames_tracked_;
+  drift_totals_.checked += tracker_.stats().drift_checked;
+  drift_totals_.corrected += tracker_.stats().drift_corrected;
+  drift_totals_.dropped += tracker_.stats().rejected_drift;
 
   // Keep the last sample at or before this frame, so the next interval can interpolate from it.
   previous_imu_t_ = t_imu;

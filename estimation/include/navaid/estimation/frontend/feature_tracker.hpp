@@ -6,7 +6,9 @@
 //      distortion model);
 //   2. forward-backward check: tracking back (fb_max_level pyramid levels, from the original
 //      point) must land within fb_threshold_px of the start;
-//   3. image-border rejection;
+//   3. every drift_check_interval frames of a track's age, alignment of its birth patch into the
+//      frame (KLT at full resolution): within drift_max_px the track moves there, else it is dropped;
+//      then image-border rejection;
 //   4. fundamental-matrix RANSAC on undistorted points scaled to pixels (f x + c), so the
 //      threshold is an epipolar distance in pixels whatever the lens distortion;
 //   5. older tracks win when two survivors come closer than min_distance_px; when at least
@@ -39,6 +41,9 @@ struct FrontendStats {
   std::size_t new_features = 0;     ///< corners detected in this frame
   std::size_t lost_klt = 0;         ///< KLT did not converge or left the image
   std::size_t rejected_fb = 0;      ///< failed the forward-backward check
+  std::size_t drift_checked = 0;    ///< tracks aligned to their birth patch (drift_check_interval)
+  std::size_t drift_corrected = 0;  ///< ... and moved there (by more than 0.05 px)
+  std::size_t rejected_drift = 0;   ///< ... and dropped: farther than drift_max_px, or no convergence
   std::size_t rejected_border = 0;  ///< within border_px of the edge
   std::size_t rejected_ransac = 0;  ///< fundamental-matrix outliers
   std::size_t pruned_close = 0;     ///< surviving tracks dropped for crowding an older track

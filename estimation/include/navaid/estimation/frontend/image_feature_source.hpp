@@ -87,6 +87,11 @@ class ImageFeatureSource {
 
   const std::string& camera_name() const { return camera_name_; }
   std::size_t frames_tracked() const { return frames_tracked_; }
+  /// The drift check's counts over every frame tracked (FrontendStats' drift_* summed).
+  struct DriftTotals {
+    std::size_t checked = 0, corrected = 0, dropped = 0;
+  };
+  const DriftTotals& drift_totals() const { return drift_totals_; }
 
  private:
   FeatureTracker tracker_;
@@ -100,6 +105,7 @@ class ImageFeatureSource {
   std::optional<Eigen::Matrix3d> last_rotation_;
   double last_load_ms_ = 0;
   std::size_t frames_tracked_ = 0;
+  DriftTotals drift_totals_;
 };
 
 }  // namespace navaid::estimation
