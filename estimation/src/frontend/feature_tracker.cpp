@@ -20,7 +20,7 @@ namespace navaid::estimation {
 struct FeatureTracker::State {
   std::vector<cv::Mat> prev_pyramid;
   std::vector<cv::Mat> cur_pyramid;
-  std::vector<cv::Mat> patches;  // per track (parallel to ids_): its birth patch, with the drift check
+  std::vector<cv::Mat> patches;  // per track (parallel to ids_): its birth patch (empty without the drift check)
 };
 
 namespace {
@@ -213,7 +213,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
   std::vector<std::uint64_t> ids;
   std::vector<int> ages;
   std::vector<Eigen::Vector2d> uv;
-  std::vector<cv::Mat> patches;  // with the drift check only
+  std::vector<cv::Mat> patches;  // birth patches, parallel to ids (empty Mats without the drift check)
   const bool drift_check = config_.drift_check_interval > 0;
   if (!ids_.empty() && !state_->prev_pyramid.empty()) {
     const std::size_t n = ids_.size();
@@ -255,7 +255,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       ids.push_back(ids_[i]);
       ages.push_back(age_[i] + 1);
       uv.emplace_back(cur[i].x, cur[i].y);
-      if (drift_check) patches.push_back(state_->patches[i]);
+      patches.push_back(state_->patches[i]);
     }
     stats_.ms_klt = ms_since(t);
 
@@ -308,8 +308,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
             ++stats_.rejected_ransac;
           }
     }
-    if (drift_check) keep_where(keep, ids, ages, uv, patches);
-    else keep_where(keep, ids, ages, uv);
+    keep_where(keep, ids, ages, uv, patches);
     stats_.ms_ransac = ms_since(t);
   }
 
@@ -330,8 +329,7 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       keep[i] = 1;
       if (radius > 0) cv::circle(mask, p, radius, cv::Scalar(0), cv::FILLED);
     }
-    if (drift_check) keep_where(keep, ids, ages, uv, patches);
-    else keep_where(keep, ids, ages, uv);
+    keep_where(keep, ids, ages, uv, patches);
   }
   stats_.tracked = ids.size();
 
@@ -350,10 +348,8 @@ FeatureFrame FeatureTracker::track(const RgbdFrame& frame, const std::optional<E
       ids.push_back(next_id_++);
       ages.push_back(1);
       uv.push_back(p);
-      if (drift_check) {
-        patches.emplace_back();
-        cv::getRectSubPix(grey, cv::Size(patch_side(config_), patch_side(config_)), c, patches.back());
-      }
+      patches.emplace_back();
+      if (drift_check) cv::getRectSubPix(grey, cv::Size(patch_side(config_), patch_side(config_)), c, patches.back());
       ++stats_.new_features;
     }
   }
